@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# The README's main command: install dependencies, build (Release) and run shadelab's default job.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake --preset release
+cmake --build --preset release -j "$jobs" --target shadelab
+if [ $# -eq 0 ]; then set -- zoo; fi
+./build/release/tools/shadelab/shadelab "$@"

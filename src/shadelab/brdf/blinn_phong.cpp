@@ -1,0 +1,84 @@
+#include "shadelab/brdf/blinn_phong.h"
+
+#include <cmath>
+
+#include "shadelab/brdf/microfacet.h"
+#include "shadelab/brdf/registry.h"
+#include "shadelab/core/constants.h"
+#include "shadelab/sampling/warp.h"
+
+namespace shadelab {
+
+double BlinnPhong::normalization_factor(double n, Normalization normalization, bool modified) {
+  const double p = std::exp2(-0.5 * n);  // 2^(-n/2)
+  switch (normalization) {
+    case Normalization::none: return 1.0;
+    case Normalization::exact:
+      return modified ? (n + 2.0) * (n + 4.0) / (8.0 * pi * (p + n))  // zoo, Blinn-Phong (modified)
+                      : (n + 2.0) / (4.0 * pi * (2.0 - p));           // zoo, Blinn-Phong
+    case Normalization::lower: return modified ? (n + 6.0) / (8.0 * pi) : (n + 2.0) / (8.0 * pi);
+    case Normalization::upper: return modified ? (n + 8.0) / (8.0 * pi) : (n + 4.0) / (8.0 * pi);
+  }
+  return 1.0;
+}
+
+namespace {
+BlinnPhong::Normalization parse_normalization(const std::string& s) {
+  if (s == "exact") return BlinnPhong::Normalization::exact;
+  if (s == "lower") return BlinnPhong::Normalization::lower;
+  if (s == "upper") return BlinnPhong::Normalization::upper;
+  return BlinnPhong::Normalization::none;
+}
+}  // namespace
+
+BlinnPhong::BlinnPhong(const Rgb& kd, const Rgb& ks, double n, Normalization normalization, bool modified)
+    : LayeredBrdf(normalization == Normalization::none ? kd : kd * inv_pi,
+                  // Specular albedo estimate: N times the lobe integral bound 8 pi / (n + 2).
+                  lobe_probability(normalization == Normalization::none ? kd.average() * pi : kd.average(),
+                                   ks.average() * normalization_factor(n, normalization, modified) * 8.0 * pi /
+                                       (n + 2.0))),
+      m_ks_scaled(ks * normalization_factor(n, normalization, modified)),
+      m_ks(ks),
+      m_n(n),
+      m_modified(modified) {}
+
+Rgb BlinnPhong::specular_eval(const Vec3& wi, const Vec3& wo) const {
+  const Vec3 h = half_vector(wi, wo);
+  if (h.z <= 0.0) return {};
+  const double lobe = std::pow(h.z, m_n);
+  return m_modified ? m_ks_scaled * lobe : m_ks_scaled * (lobe / safe_divisor(wi.z));
+}
+
+double BlinnPhong::specular_pdf(const Vec3& wi, const Vec3& wo) const {
+  const Vec3 h = half_vector(wi, wo);
+  return reflect_jacobian_pdf(power_cosine_pdf(h, m_n), wo, h);
+}
+
+Vec3 BlinnPhong::specular_sample(const Vec3& wo, Vec2 u, double) const {
+  return reflect(wo, sample_power_cosine(u, m_n));
+}
+
+namespace {
+ModelInfo blinn_phong_info(bool modified) {
+  ModelInfo info;
+  info.name = modified ? "blinn-phong-modified" : "blinn-phong";
+  info.summary = modified ? "kd/pi + ks (n+2)(n+4)/(8pi(2^(-n/2)+n)) (N.H)^n"
+                          : "kd/pi + ks (n+2)/(4pi(2-2^(-n/2))) (N.H)^n / (N.L)";
+  info.source = modified ? "lecture 5 'The Modified Blinn-Phong Model'; zoo row 'Blinn-Phong (modified)'"
+                         : "Blinn 1977; lecture 5 'The Blinn-Phong Model'; zoo row 'Blinn-Phong'";
+  info.params = {kd_param(), ks_param(), exponent_param(),
+                 {"normalization", ParamKind::choice, "exact", 0, 0, {"none", "exact", "lower", "upper"},
+                  "exact: the zoo's closed form; lower/upper: its bounds; none: the lecture's unnormalized form",
+                  0, {}}};
+  info.create = [modified](const ParamValues& p) -> Result<BrdfPtr> {
+    return BrdfPtr(new BlinnPhong(p.color("kd"), p.color("ks"), p.scalar("n"),
+                                  parse_normalization(p.choice("normalization")), modified));
+  };
+  return info;
+}
+}  // namespace
+
+ModelInfo blinn_phong_model() { return blinn_phong_info(false); }
+ModelInfo blinn_phong_modified_model() { return blinn_phong_info(true); }
+
+}  // namespace shadelab

@@ -1,0 +1,37 @@
+// blinn-phong and blinn-phong-modified: the Blinn-Phong lobe (N.H)^n.
+//
+//   blinn-phong:          f_r = kd' + ks N (N.H)^n / (N.L)   (Blinn 1977; lecture 5, "The Blinn-Phong Model")
+//   blinn-phong-modified: f_r = kd' + ks N (N.H)^n            (lecture 5, "The Modified Blinn-Phong Model")
+//
+// N, from the zoo (Schüler 2011), normalizing the RDF f_r cos(theta_i) with the viewer on the normal:
+//   blinn-phong           exact (n+2)/(4 pi (2 - 2^(-n/2))),   lower (n+2)/(8 pi),   upper (n+4)/(8 pi)
+//   blinn-phong-modified  exact (n+2)(n+4)/(8 pi (2^(-n/2)+n)), lower (n+6)/(8 pi), upper (n+8)/(8 pi)
+// kd' = kd/pi when normalized, kd with normalization = none (the lecture's unnormalized form, N = 1).
+// Sampling: H from the power-cosine lobe (n+1)/(2 pi) (N.H)^n, L = reflect(V, H); pdf = p_H / (4 V.H).
+#pragma once
+
+#include "shadelab/brdf/layered.h"
+
+namespace shadelab {
+
+class BlinnPhong final : public LayeredBrdf {
+ public:
+  enum class Normalization { none, exact, lower, upper };
+  BlinnPhong(const Rgb& kd, const Rgb& ks, double n, Normalization normalization, bool modified);
+
+  bool is_reciprocal() const override { return m_modified || m_ks.is_black(); }
+  static double normalization_factor(double n, Normalization normalization, bool modified);
+
+ protected:
+  Rgb specular_eval(const Vec3& wi, const Vec3& wo) const override;
+  double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
+  Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
+
+ private:
+  Rgb m_ks_scaled;
+  Rgb m_ks;
+  double m_n;
+  bool m_modified;
+};
+
+}  // namespace shadelab

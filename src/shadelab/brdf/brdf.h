@@ -1,0 +1,47 @@
+// shadelab BRDF interface: every model has eval, pdf and sample, in the local shading frame (normal = +Z).
+//
+// Contract (docs/conventions.md):
+// - wi points from the surface toward the light, wo toward the viewer; both unit length.
+// - eval(wi, wo) returns f_r in 1/sr, RGB, WITHOUT the cosine factor. If either direction is on or below
+//   the horizon (z <= 0) it returns 0, never NaN.
+// - sample(wo, u, u_lobe) draws wi from a distribution over the whole sphere of directions whose density per
+//   unit solid angle is pdf(wi, wo); that density integrates to 1 over the sphere. A sampled wi may fall
+//   below the horizon (a glossy lobe about the mirror direction near grazing); its weight is then 0.
+// - weight = f_r(wi, wo) cos(theta_i) / pdf, the Monte Carlo estimator's factor; 0 where pdf is 0.
+// - If wo is on or below the horizon, sample returns pdf 0 and weight 0.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "shadelab/color/rgb.h"
+#include "shadelab/core/vec.h"
+
+namespace shadelab {
+
+struct BrdfSample {
+  Vec3 wi{0.0, 0.0, 1.0};
+  double pdf = 0.0;  // per unit solid angle
+  Rgb weight;        // f cos(theta_i) / pdf
+};
+
+class Brdf {
+ public:
+  Brdf() = default;
+  Brdf(const Brdf&) = default;
+  Brdf& operator=(const Brdf&) = default;
+  virtual ~Brdf() = default;
+
+  virtual Rgb eval(const Vec3& wi, const Vec3& wo) const = 0;
+  virtual double pdf(const Vec3& wi, const Vec3& wo) const = 0;
+  // u picks the direction within a lobe, u_lobe picks the lobe; all three in [0, 1).
+  virtual BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const = 0;
+
+  // True when f(wi, wo) == f(wo, wi) for every pair. Some published forms are not reciprocal by design
+  // (the original Phong and Blinn-Phong, which divide by N.L; wrapped diffuse with w > 0).
+  virtual bool is_reciprocal() const { return true; }
+};
+
+using BrdfPtr = std::unique_ptr<const Brdf>;
+
+}  // namespace shadelab

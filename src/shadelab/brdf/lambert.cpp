@@ -1,0 +1,32 @@
+#include "shadelab/brdf/lambert.h"
+
+#include "shadelab/brdf/registry.h"
+#include "shadelab/core/constants.h"
+#include "shadelab/sampling/warp.h"
+
+namespace shadelab {
+
+Rgb Lambert::eval(const Vec3& wi, const Vec3& wo) const {
+  if (wi.z <= 0.0 || wo.z <= 0.0) return {};
+  return m_kd * inv_pi;  // kd / pi
+}
+
+double Lambert::pdf(const Vec3& wi, const Vec3& wo) const {
+  return wo.z > 0.0 ? cosine_hemisphere_pdf(wi) : 0.0;
+}
+
+BrdfSample Lambert::sample(const Vec3& wo, Vec2 u, double) const {
+  BrdfSample s;
+  if (wo.z <= 0.0) return s;
+  s.wi = sample_cosine_hemisphere(u);
+  s.pdf = cosine_hemisphere_pdf(s.wi);
+  if (s.pdf > 0.0) s.weight = m_kd;  // (kd/pi) cos / (cos/pi)
+  return s;
+}
+
+ModelInfo lambert_model() {
+  return {"lambert", "kd / pi", "Lambert 1760; lecture 5, 'Pure Lambertian'", {kd_param("0.8")},
+          [](const ParamValues& p) -> Result<BrdfPtr> { return BrdfPtr(new Lambert(p.color("kd"))); }};
+}
+
+}  // namespace shadelab

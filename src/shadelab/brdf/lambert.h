@@ -1,0 +1,20 @@
+// lambert: f_r = kd / pi (Lambert 1760; the lecture's "Pure Lambertian" slide: rho_d / pi).
+// Sampled with the cosine-weighted hemisphere, so the sample weight is exactly kd.
+#pragma once
+
+#include "shadelab/brdf/brdf.h"
+
+namespace shadelab {
+
+class Lambert final : public Brdf {
+ public:
+  explicit Lambert(const Rgb& kd) : m_kd(kd) {}
+  Rgb eval(const Vec3& wi, const Vec3& wo) const override;
+  double pdf(const Vec3& wi, const Vec3& wo) const override;
+  BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
+
+ private:
+  Rgb m_kd;
+};
+
+}  // namespace shadelab

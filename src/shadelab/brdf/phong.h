@@ -1,0 +1,38 @@
+// phong and phong-modified: the Phong lobe (R.L)^n about the mirror direction R of the viewer.
+//
+//   phong:          f_r = kd' + ks N (R.L)^n / (N.L)   (Phong 1975 as a BRDF; lecture 5, "Phong Reflection Model")
+//   phong-modified: f_r = kd' + ks N (R.L)^n            (Lewis 1994; Lafortune & Willems 1994)
+//
+// normalization = exact: N = (n + 1)/(2 pi) for phong and (n + 2)/(2 pi) for phong-modified (the zoo's RDF
+// rows, Schüler 2011), and kd' = kd/pi; then with the viewer on the normal the specular albedo is exactly ks.
+// normalization = none: N = 1 and kd' = kd, the lecture's unnormalized form (it does not conserve energy).
+// The original form divides by N.L and so is not reciprocal; the modified form is.
+// Sampling: a power-cosine lobe of exponent n about R (pdf (n + 1)/(2 pi) (R.L)^n over the sphere).
+#pragma once
+
+#include "shadelab/brdf/layered.h"
+
+namespace shadelab {
+
+class Phong final : public LayeredBrdf {
+ public:
+  enum class Normalization { none, exact };
+  Phong(const Rgb& kd, const Rgb& ks, double n, Normalization normalization, bool modified);
+
+  bool is_reciprocal() const override { return m_modified || m_ks.is_black(); }
+  // The constant N in front of the lobe.
+  static double normalization_factor(double n, Normalization normalization, bool modified);
+
+ protected:
+  Rgb specular_eval(const Vec3& wi, const Vec3& wo) const override;
+  double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
+  Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
+
+ private:
+  Rgb m_ks_scaled;  // ks * N
+  Rgb m_ks;
+  double m_n;
+  bool m_modified;
+};
+
+}  // namespace shadelab

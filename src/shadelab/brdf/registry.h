@@ -1,0 +1,52 @@
+// shadelab BRDF registry: every model by the name a user types, with its parameters, defaults and ranges.
+// The registry name of a model is the name of its file (phong.h holds phong and phong-modified).
+#pragma once
+
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "shadelab/brdf/brdf.h"
+#include "shadelab/brdf/params.h"
+#include "shadelab/core/error.h"
+
+namespace shadelab {
+
+struct ModelInfo {
+  std::string name;
+  std::string summary;  // one line: the formula
+  std::string source;   // where the formula comes from
+  std::vector<ParamSpec> params;
+  std::function<Result<BrdfPtr>(const ParamValues&)> create;
+};
+
+// All models, in a fixed order.
+std::span<const ModelInfo> brdf_models();
+const ModelInfo* find_brdf_model(std::string_view name);
+
+using ParamAssignments = std::vector<std::pair<std::string, std::string>>;
+// Looks the model up, validates the parameters and builds it. Errors name the model and parameter.
+Result<BrdfPtr> make_brdf(std::string_view name, const ParamAssignments& params = {});
+
+// Parameter declarations shared by several models.
+ParamSpec kd_param(std::string default_value = "0.5");
+ParamSpec ks_param(std::string default_value = "0.5");
+ParamSpec exponent_param(std::string name = "n", std::string default_value = "50");
+
+// Per-model registration (defined in each model's file).
+ModelInfo lambert_model();
+ModelInfo phong_model();
+ModelInfo phong_modified_model();
+ModelInfo blinn_phong_model();
+ModelInfo blinn_phong_modified_model();
+ModelInfo cook_torrance_model();
+ModelInfo minimalist_cook_torrance_model();
+ModelInfo ward_model();
+ModelInfo ward_anisotropic_model();
+ModelInfo lafortune_model();
+ModelInfo wrapped_diffuse_model();
+
+}  // namespace shadelab
