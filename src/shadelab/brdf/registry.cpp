@@ -4,10 +4,11 @@ namespace shadelab {
 
 std::span<const ModelInfo> brdf_models() {
   static const std::vector<ModelInfo> models = {
-      lambert_model(),          phong_model(),         phong_modified_model(),
-      blinn_phong_model(),      blinn_phong_modified_model(), cook_torrance_model(),
-      minimalist_cook_torrance_model(), ward_model(), ward_anisotropic_model(),
-      lafortune_model(),        wrapped_diffuse_model(),
+      lambert_model(),
+      phong_model(),
+      phong_modified_model(),
+      blinn_phong_model(),
+      blinn_phong_modified_model(),
   };
   return models;
 }
