@@ -9,6 +9,12 @@ std::span<const ModelInfo> brdf_models() {
       phong_modified_model(),
       blinn_phong_model(),
       blinn_phong_modified_model(),
+      cook_torrance_model(),
+      minimalist_cook_torrance_model(),
+      ward_model(),
+      ward_anisotropic_model(),
+      lafortune_model(),
+      wrapped_diffuse_model(),
   };
   return models;
 }

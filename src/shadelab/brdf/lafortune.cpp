@@ -1,0 +1,93 @@
+#include "shadelab/brdf/lafortune.h"
+
+#include <cmath>
+
+#include "shadelab/brdf/registry.h"
+#include "shadelab/core/constants.h"
+#include "shadelab/core/frame.h"
+#include "shadelab/sampling/warp.h"
+
+namespace shadelab {
+
+namespace {
+// Albedo estimate of lobe j used for lobe selection: |s|^n * 2 pi / (n + 1) (its integral over the sphere).
+double lobe_weight(double s_len, double n) { return std::pow(s_len, n) * two_pi / (n + 1.0); }
+}  // namespace
+
+Lafortune::Lafortune(const Rgb& kd, const Rgb& ks, std::vector<Lobe> lobes)
+    : LayeredBrdf(kd * inv_pi, [&] {
+        // Specular estimate at normal incidence: s = Cz V with V = N.
+        double spec = 0.0;
+        for (const auto& l : lobes) spec += lobe_weight(std::abs(l.cz), l.n);
+        return lobe_probability(kd.average(), ks.average() * spec);
+      }()),
+      m_ks(ks),
+      m_lobes(std::move(lobes)) {}
+
+Lafortune::Axes Lafortune::axes(const Vec3& wo) const {
+  Axes a;
+  a.axis.resize(m_lobes.size());
+  a.probability.resize(m_lobes.size());
+  double total = 0.0;
+  for (std::size_t j = 0; j < m_lobes.size(); ++j) {
+    const auto& l = m_lobes[j];
+    a.axis[j] = {l.cx * wo.x, l.cy * wo.y, l.cz * wo.z};
+    const double len = length(a.axis[j]);
+    a.probability[j] = len > 0.0 ? lobe_weight(len, l.n) : 0.0;
+    total += a.probability[j];
+  }
+  for (auto& p : a.probability) p = total > 0.0 ? p / total : 1.0 / static_cast<double>(m_lobes.size());
+  return a;
+}
+
+Rgb Lafortune::specular_eval(const Vec3& wi, const Vec3& wo) const {
+  double sum = 0.0;
+  for (const auto& l : m_lobes) {
+    const double c = l.cx * wi.x * wo.x + l.cy * wi.y * wo.y + l.cz * wi.z * wo.z;  // Lafortune 1997 eq. 4
+    if (c > 0.0) sum += std::pow(c, l.n);
+  }
+  return m_ks * sum;
+}
+
+double Lafortune::specular_pdf(const Vec3& wi, const Vec3& wo) const {
+  const Axes a = axes(wo);
+  double p = 0.0;
+  for (std::size_t j = 0; j < m_lobes.size(); ++j) {
+    const double len = length(a.axis[j]);
+    if (a.probability[j] == 0.0 || len == 0.0) continue;
+    const double c = dot(a.axis[j], wi) / len;
+    if (c > 0.0) p += a.probability[j] * (m_lobes[j].n + 1.0) * inv_two_pi * std::pow(c, m_lobes[j].n);
+  }
+  return p;
+}
+
+Vec3 Lafortune::specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const {
+  const Axes a = axes(wo);
+  std::size_t j = 0;
+  double acc = a.probability[0];
+  while (j + 1 < m_lobes.size() && u_lobe >= acc) acc += a.probability[++j];
+  const double len = length(a.axis[j]);
+  if (len == 0.0) return sample_uniform_sphere(u);  // unreachable: such a lobe has probability 0
+  return Frame::from_normal(a.axis[j] / len).to_world(sample_power_cosine(u, m_lobes[j].n));
+}
+
+ModelInfo lafortune_model() {
+  ModelInfo info;
+  info.name = "lafortune";
+  info.summary = "kd/pi + ks sum_j max(0, Cx Lx Vx + Cy Ly Vy + Cz Lz Vz)^n_j";
+  info.source = "Lafortune, Foo, Torrance & Greenberg 1997 eq. 4; lecture 5 'Empirical BRDF Representation'";
+  info.params = {kd_param("0.3"),
+                 ks_param("1"),
+                 {"lobes", ParamKind::lobes, "-1,-1,1,20", -1e3, 1e3, {},
+                  "lobes Cx,Cy,Cz,n separated by ';' (n in [0, 1e6])", 4,
+                  {{-1e3, 1e3}, {-1e3, 1e3}, {-1e3, 1e3}, {0.0, 1e6}}}};
+  info.create = [](const ParamValues& p) -> Result<BrdfPtr> {
+    std::vector<Lafortune::Lobe> lobes;
+    for (const auto& g : p.lobes("lobes")) lobes.push_back({g[0], g[1], g[2], g[3]});
+    if (lobes.empty()) return make_error("brdf lafortune: parameter 'lobes' needs at least one lobe");
+    return BrdfPtr(new Lafortune(p.color("kd"), p.color("ks"), std::move(lobes)));
+  };
+  return info;
+}
+
+}  // namespace shadelab

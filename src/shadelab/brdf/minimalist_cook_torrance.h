@@ -1,0 +1,28 @@
+// minimalist-cook-torrance: f_r = kd/pi + ks (n + 1)(N.H)^n / (8 pi (L.H)^3)
+// (Schüler, "An Efficient and Physically Plausible Real-Time Shading Model", ShaderX7 2.5, 2009; the zoo
+// article's "Minimalist Cook-Torrance"). It is kd/pi + ks D F V with D = (n+1)/(2pi) (N.H)^n, the zoo's NDF
+// row, and the combined FV = 1/(4 (L.H)^3): no Fresnel colour shift, linear in ks. Reciprocal, since
+// L.H = V.H. Not energy conserving at grazing angles (the 1/(L.H)^3 grows without bound); `brdf check`
+// reports its measured maximum albedo.
+// Sampling: H from the power-cosine lobe (n+1)/(2pi) (N.H)^n, pdf = p_H / (4 V.H).
+#pragma once
+
+#include "shadelab/brdf/layered.h"
+
+namespace shadelab {
+
+class MinimalistCookTorrance final : public LayeredBrdf {
+ public:
+  MinimalistCookTorrance(const Rgb& kd, const Rgb& ks, double n);
+
+ protected:
+  Rgb specular_eval(const Vec3& wi, const Vec3& wo) const override;
+  double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
+  Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
+
+ private:
+  Rgb m_ks;
+  double m_n;
+};
+
+}  // namespace shadelab

@@ -1,0 +1,48 @@
+#include "shadelab/brdf/wrapped_diffuse.h"
+
+#include "shadelab/brdf/registry.h"
+#include "shadelab/core/constants.h"
+#include "shadelab/sampling/warp.h"
+
+namespace shadelab {
+
+Rgb WrappedDiffuse::eval(const Vec3& wi, const Vec3& wo) const {
+  if (wi.z <= 0.0 || wo.z <= 0.0) return {};
+  // The 1/N.L diverges at the horizon for w > 0; clamped at 1e-12 so eval stays finite (the product
+  // f cos(theta_i), which is what any estimator uses, is unaffected above that).
+  const double cos_i = wi.z > 1e-12 ? wi.z : 1e-12;
+  const double one_w = 1.0 + m_w;
+  return m_kd * ((wi.z + m_w) / (pi * one_w * one_w * cos_i));  // McAuley 2011
+}
+
+double WrappedDiffuse::pdf(const Vec3& wi, const Vec3& wo) const {
+  if (wo.z <= 0.0 || wi.z < 0.0) return 0.0;
+  return (wi.z + m_w) / (pi * (1.0 + 2.0 * m_w));  // (cos + w) / integral over the hemisphere
+}
+
+BrdfSample WrappedDiffuse::sample(const Vec3& wo, Vec2 u, double u_lobe) const {
+  BrdfSample s;
+  if (wo.z <= 0.0) return s;
+  const double p_cos = 1.0 / (1.0 + 2.0 * m_w);
+  s.wi = u_lobe < p_cos ? sample_cosine_hemisphere(u) : sample_uniform_hemisphere(u);
+  s.pdf = pdf(s.wi, wo);
+  if (s.pdf > 0.0 && s.wi.z > 0.0) {
+    const double one_w = 1.0 + m_w;
+    s.weight = m_kd * ((1.0 + 2.0 * m_w) / (one_w * one_w));  // f cos / pdf, constant
+  }
+  return s;
+}
+
+ModelInfo wrapped_diffuse_model() {
+  ModelInfo info;
+  info.name = "wrapped-diffuse";
+  info.summary = "kd (N.L + w) / (pi (1 + w)^2 N.L)";
+  info.source = "McAuley 2011 'Energy-Conserving Wrapped Diffuse'; Lagarde 2012 'PI or not to PI'";
+  info.params = {kd_param("0.8"), {"w", ParamKind::scalar, "0.5", 0.0, 1.0, {}, "wrap amount (0 = Lambert)", 0, {}}};
+  info.create = [](const ParamValues& p) -> Result<BrdfPtr> {
+    return BrdfPtr(new WrappedDiffuse(p.color("kd"), p.scalar("w")));
+  };
+  return info;
+}
+
+}  // namespace shadelab
