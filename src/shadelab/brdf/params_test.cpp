@@ -1,0 +1,63 @@
+#include "shadelab/brdf/params.h"
+
+#include <gtest/gtest.h>
+
+#include "shadelab/brdf/registry.h"
+
+namespace shadelab {
+namespace {
+
+std::string error_of(const std::string& model, const ParamAssignments& p) {
+  auto r = make_brdf(model, p);
+  return r ? std::string() : r.error().message;
+}
+
+TEST(Params, DefaultsFillUnsetValues) {
+  const ModelInfo* info = find_brdf_model("phong");
+  ASSERT_NE(info, nullptr);
+  auto v = parse_params(info->name, info->params, {{"n", "7"}});
+  ASSERT_TRUE(v.has_value());
+  EXPECT_DOUBLE_EQ(v->scalar("n"), 7.0);
+  EXPECT_TRUE(v->is_set("n"));
+  EXPECT_FALSE(v->is_set("kd"));
+  EXPECT_EQ(v->choice("normalization"), "exact");
+}
+
+TEST(Params, ColorTakesScalarOrTriple) {
+  const ModelInfo* info = find_brdf_model("lambert");
+  auto a = parse_params(info->name, info->params, {{"kd", "0.25"}});
+  auto b = parse_params(info->name, info->params, {{"kd", "0.1,0.2,0.3"}});
+  ASSERT_TRUE(a && b);
+  EXPECT_DOUBLE_EQ(a->color("kd").b, 0.25);
+  EXPECT_DOUBLE_EQ(b->color("kd").g, 0.2);
+}
+
+TEST(Params, ErrorsNameModelAndParameter) {
+  EXPECT_EQ(error_of("phong", {{"n", "-1"}}), "brdf phong: parameter 'n' = -1 is out of range [0, 1e+06]");
+  EXPECT_NE(error_of("phong", {{"shininess", "3"}}).find("unknown parameter 'shininess'"), std::string::npos);
+  EXPECT_NE(error_of("phong", {{"n", "abc"}}).find("'abc' is not a number"), std::string::npos);
+  EXPECT_NE(error_of("phong", {{"n", "nan"}}).find("not finite"), std::string::npos);
+  EXPECT_NE(error_of("phong", {{"n", "inf"}}).find("not finite"), std::string::npos);
+  EXPECT_NE(error_of("phong", {{"kd", "0.1,0.2"}}).find("a number or r,g,b"), std::string::npos);
+  EXPECT_NE(error_of("phong", {{"normalization", "half"}}).find("is not one of none | exact"), std::string::npos);
+  EXPECT_NE(error_of("nope", {}).find("unknown BRDF model 'nope'"), std::string::npos);
+}
+
+TEST(Params, SplitAssignment) {
+  auto a = split_assignment("kd=0.5,0.5,0.5");
+  ASSERT_TRUE(a.has_value());
+  EXPECT_EQ(a->first, "kd");
+  EXPECT_EQ(a->second, "0.5,0.5,0.5");
+  EXPECT_FALSE(split_assignment("kd").has_value());
+  EXPECT_FALSE(split_assignment("=3").has_value());
+}
+
+TEST(Params, EveryRegisteredDefaultIsValid) {
+  for (const auto& m : brdf_models()) {
+    auto r = make_brdf(m.name);
+    EXPECT_TRUE(r.has_value()) << m.name << ": " << (r ? "" : r.error().message);
+  }
+}
+
+}  // namespace
+}  // namespace shadelab
