@@ -1,0 +1,86 @@
+// Cost per call of eval, pdf and sample for every registered model, at default parameters, on a fixed
+// set of random direction pairs (so the branch mix is the same for every model). The baseline measured in
+// the same run is "lambert", the cheapest model: compare models as ratios to it, not as absolute times.
+//
+//   ./build/release/bench/brdf_bench --benchmark_filter=eval
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "shadelab/brdf/registry.h"
+#include "shadelab/sampling/rng.h"
+#include "shadelab/sampling/warp.h"
+
+namespace {
+
+using namespace shadelab;
+
+constexpr std::size_t kPairs = 4096;  // fits in L1/L2 with the model state
+
+struct Inputs {
+  std::vector<Vec3> wi;
+  std::vector<Vec3> wo;
+  std::vector<Vec2> u;
+  std::vector<double> u_lobe;
+};
+
+const Inputs& inputs() {
+  static const Inputs in = [] {
+    Inputs r;
+    Pcg32 rng(12345);
+    for (std::size_t i = 0; i < kPairs; ++i) {
+      r.wi.push_back(sample_cosine_hemisphere({rng.next_double(), rng.next_double()}));
+      r.wo.push_back(sample_cosine_hemisphere({rng.next_double(), rng.next_double()}));
+      r.u.push_back({rng.next_double(), rng.next_double()});
+      r.u_lobe.push_back(rng.next_double());
+    }
+    return r;
+  }();
+  return in;
+}
+
+void bench_eval(benchmark::State& state, const std::string& model) {
+  const auto f = make_brdf(model).value();
+  const auto& in = inputs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(f->eval(in.wi[i], in.wo[i]));
+    i = (i + 1) % kPairs;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void bench_pdf(benchmark::State& state, const std::string& model) {
+  const auto f = make_brdf(model).value();
+  const auto& in = inputs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(f->pdf(in.wi[i], in.wo[i]));
+    i = (i + 1) % kPairs;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void bench_sample(benchmark::State& state, const std::string& model) {
+  const auto f = make_brdf(model).value();
+  const auto& in = inputs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(f->sample(in.wo[i], in.u[i], in.u_lobe[i]));
+    i = (i + 1) % kPairs;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+const bool registered = [] {
+  for (const auto& m : brdf_models()) {
+    benchmark::RegisterBenchmark(("eval/" + m.name).c_str(), bench_eval, m.name);
+    benchmark::RegisterBenchmark(("pdf/" + m.name).c_str(), bench_pdf, m.name);
+    benchmark::RegisterBenchmark(("sample/" + m.name).c_str(), bench_sample, m.name);
+  }
+  return true;
+}();
+
+}  // namespace
+
+BENCHMARK_MAIN();
