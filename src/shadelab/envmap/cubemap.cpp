@@ -1,0 +1,130 @@
+#include "shadelab/envmap/cubemap.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+
+namespace shadelab {
+
+CubeCoord cube_coord(const Vec3& r) {
+  const double ax = std::abs(r.x);
+  const double ay = std::abs(r.y);
+  const double az = std::abs(r.z);
+  CubeCoord c;
+  double sc = 0.0;
+  double tc = 0.0;
+  double ma = 0.0;
+  // OpenGL table 8.19; ties go to X, then Y (any choice is consistent on the shared edge).
+  if (ax >= ay && ax >= az) {
+    ma = ax;
+    if (r.x >= 0.0) { c.face = 0; sc = -r.z; tc = -r.y; } else { c.face = 1; sc = r.z; tc = -r.y; }
+  } else if (ay >= az) {
+    ma = ay;
+    if (r.y >= 0.0) { c.face = 2; sc = r.x; tc = r.z; } else { c.face = 3; sc = r.x; tc = -r.z; }
+  } else {
+    ma = az;
+    if (r.z >= 0.0) { c.face = 4; sc = r.x; tc = -r.y; } else { c.face = 5; sc = -r.x; tc = -r.y; }
+  }
+  c.s = 0.5 * (sc / ma + 1.0);
+  c.t = 0.5 * (tc / ma + 1.0);
+  return c;
+}
+
+Vec3 cube_direction(int face, double s, double t) {
+  const double sc = 2.0 * s - 1.0;
+  const double tc = 2.0 * t - 1.0;
+  Vec3 r;
+  switch (face) {  // the inverse of table 8.19
+    case 0: r = {1.0, -tc, -sc}; break;
+    case 1: r = {-1.0, -tc, sc}; break;
+    case 2: r = {sc, 1.0, tc}; break;
+    case 3: r = {sc, -1.0, -tc}; break;
+    case 4: r = {sc, -tc, 1.0}; break;
+    default: r = {-sc, -tc, -1.0}; break;
+  }
+  return normalize(r);
+}
+
+namespace {
+// Solid angle of the face-plane rectangle [0, x] x [0, y] (signed), at distance 1.
+double area_element(double x, double y) { return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0)); }
+}  // namespace
+
+double cube_texel_solid_angle(int x, int y, int size) {
+  const double inv = 2.0 / size;
+  const double x0 = x * inv - 1.0;
+  const double x1 = (x + 1) * inv - 1.0;
+  const double y0 = y * inv - 1.0;
+  const double y1 = (y + 1) * inv - 1.0;
+  return area_element(x1, y1) - area_element(x0, y1) - area_element(x1, y0) + area_element(x0, y0);
+}
+
+CubeMap::CubeMap(int n) : size(n) {
+  for (auto& f : faces) f = Image(n, n);
+}
+
+Rgb CubeMap::sample(const Vec3& dir) const {
+  const CubeCoord c = cube_coord(dir);
+  const Image& img = faces[static_cast<std::size_t>(c.face)];
+  const double fx = std::clamp(c.s * size - 0.5, 0.0, size - 1.0);
+  const double fy = std::clamp(c.t * size - 0.5, 0.0, size - 1.0);
+  const int x0 = std::min(static_cast<int>(fx), size - 1);
+  const int y0 = std::min(static_cast<int>(fy), size - 1);
+  const int x1 = std::min(x0 + 1, size - 1);
+  const int y1 = std::min(y0 + 1, size - 1);
+  const double ax = fx - x0;
+  const double ay = fy - y0;
+  return (img.at(x0, y0) * (1 - ax) + img.at(x1, y0) * ax) * (1 - ay) +
+         (img.at(x0, y1) * (1 - ax) + img.at(x1, y1) * ax) * ay;
+}
+
+const CubeTexelTable& CubeTexelTable::get(int size) {
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<CubeTexelTable>> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& entry = cache[size];
+  if (!entry) {
+    auto t = std::make_unique<CubeTexelTable>();
+    t->size = size;
+    const auto n = static_cast<std::size_t>(size);
+    t->direction.resize(6 * n * n);
+    t->solid_angle.resize(6 * n * n);
+    for (int f = 0; f < 6; ++f) {
+      for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+          const std::size_t i = (static_cast<std::size_t>(f) * n + static_cast<std::size_t>(y)) * n + static_cast<std::size_t>(x);
+          t->direction[i] = texel_direction(f, x, y, size);
+          t->solid_angle[i] = cube_texel_solid_angle(x, y, size);
+        }
+      }
+    }
+    entry = std::move(t);
+  }
+  return *entry;
+}
+
+const std::vector<CubeFaceTexel>& cube_face_table(int size) {
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<std::vector<CubeFaceTexel>>> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& entry = cache[size];
+  if (!entry) {
+    auto table = std::make_unique<std::vector<CubeFaceTexel>>(static_cast<std::size_t>(size) * static_cast<std::size_t>(size));
+    for (int y = 0; y < size; ++y) {
+      for (int x = 0; x < size; ++x) {
+        const double sc = 2.0 * (x + 0.5) / size - 1.0;
+        const double tc = 2.0 * (y + 0.5) / size - 1.0;
+        const double inv_len = 1.0 / std::sqrt(1.0 + sc * sc + tc * tc);
+        (*table)[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)] = {
+            static_cast<float>(sc * inv_len), static_cast<float>(tc * inv_len), static_cast<float>(inv_len),
+            static_cast<float>(cube_texel_solid_angle(x, y, size))};
+      }
+    }
+    entry = std::move(table);
+  }
+  return *entry;
+}
+
+}  // namespace shadelab

@@ -1,0 +1,50 @@
+// shadelab images: a plain container of linear RGB float pixels.
+//
+// Contract: `data` holds width * height * 3 floats, row-major, row 0 at the top, channels R, G, B in that
+// order, linear Rec.709 (docs/images.md). Values are radiometric and unbounded (HDR): no clamping, no
+// transfer function, no alpha. at() and set() do no bounds checks; x in [0, width), y in [0, height).
+// A default-constructed Image is 0 x 0 and empty; file I/O rejects such an image.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include "shadelab/color/rgb.h"
+
+namespace shadelab {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<float> data;  // 3 floats per pixel, row-major, row 0 at the top
+
+  Image() = default;
+  // A black image; negative sizes are treated as 0.
+  Image(int w, int h)
+      : width(std::max(w, 0)),
+        height(std::max(h, 0)),
+        data(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3, 0.0f) {}
+
+  std::size_t pixel_count() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
+  bool empty() const { return width <= 0 || height <= 0; }
+  // True when data has exactly width * height * 3 floats and both sizes are positive.
+  bool is_valid() const { return !empty() && data.size() == pixel_count() * 3; }
+
+  // Index of the first float (R) of pixel (x, y).
+  std::size_t index(int x, int y) const {
+    return (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
+  }
+  Rgb at(int x, int y) const {
+    const std::size_t i = index(x, y);
+    return {static_cast<double>(data[i]), static_cast<double>(data[i + 1]), static_cast<double>(data[i + 2])};
+  }
+  void set(int x, int y, const Rgb& c) {
+    const std::size_t i = index(x, y);
+    data[i] = static_cast<float>(c.r);
+    data[i + 1] = static_cast<float>(c.g);
+    data[i + 2] = static_cast<float>(c.b);
+  }
+};
+
+}  // namespace shadelab
