@@ -7,6 +7,7 @@
 namespace shadelab {
 
 double F_dielectric(double cos_i, double eta) {
+  if (eta == 1.0) return 0.0;  // no interface (index-matched); avoids 0/0 and a spurious TIR at grazing
   cos_i = std::clamp(cos_i, -1.0, 1.0);
   if (cos_i < 0.0) {  // arriving from the transmitted side: swap the media
     eta = 1.0 / eta;
@@ -23,6 +24,7 @@ double F_dielectric(double cos_i, double eta) {
 
 double F_conductor(double cos_i, double n, double k) {
   using C = std::complex<double>;
+  if (n == 1.0 && k == 0.0) return 0.0;  // no interface (index-matched); avoids 0/0 at grazing
   cos_i = std::clamp(cos_i, 0.0, 1.0);
   const C eta(n, k);
   const double sin2_i = 1.0 - cos_i * cos_i;

@@ -11,6 +11,16 @@ namespace {
 
 constexpr std::string_view k_wl = fresnel_material_wavelengths;  // "650, 550, 450 nm" for every entry
 
+constexpr std::string_view k_johnson_christy_1972 =
+    "P. B. Johnson and R. W. Christy, \"Optical constants of the noble metals\", "
+    "Phys. Rev. B 6, 4370-4379 (1972)";
+constexpr std::string_view k_johnson_christy_1974 =
+    "P. B. Johnson and R. W. Christy, \"Optical constants of transition metals: Ti, V, Cr, Mn, Fe, Co, Ni, "
+    "and Pd\", Phys. Rev. B 9, 5056-5070 (1974)";
+constexpr std::string_view k_rakic_1998 =
+    "A. D. Rakic, A. B. Djurisic, J. M. Elazar, M. L. Majewski, \"Optical properties of metallic films for "
+    "vertical-cavity optoelectronic devices\", Appl. Opt. 37, 5271-5283 (1998), Lorentz-Drude model";
+
 // How the numbers were obtained (wavelengths in micrometres, "lerp a-b" = linear interpolation in wavelength
 // between the table rows at a and b; 4 decimals kept). Sellmeier: n^2 = 1 + sum B_i l^2 / (l^2 - C_i).
 constexpr std::array<FresnelMaterial, 13> k_materials{{
@@ -20,9 +30,10 @@ constexpr std::array<FresnelMaterial, 13> k_materials{{
      "G. M. Hale and M. R. Querry, \"Optical constants of water in the 200-nm to 200-um wavelength region\", "
      "Appl. Opt. 12, 555-563 (1973)"},
     // Glass = SCHOTT N-BK7 borosilicate crown, from its Sellmeier formula: B = 1.03961212, 0.231792344,
-    // 1.01046945; C = 0.00600069867, 0.0200179144, 103.560653 um^2 (SCHOTT optical glass data sheet).
+    // 1.01046945; C = 0.00600069867, 0.0200179144, 103.560653 um^2 (SCHOTT data sheet, catalogue of 2017).
     {"glass", false, {1.51452, 1.51852, 1.52532}, {0.0, 0.0, 0.0}, k_wl,
-     "SCHOTT AG, optical glass data sheet N-BK7 (Sellmeier coefficients), SCHOTT optical glass catalogue"},
+     "SCHOTT AG, \"Optical Glass - Data Sheets\", N-BK7 Sellmeier coefficients (SCHOTT Zemax catalogue, "
+     "2017-01-20)"},
     // Fused silica (SiO2), from Malitson's Sellmeier formula: B = 0.6961663, 0.4079426, 0.8974794;
     // sqrt(C) = 0.0684043, 0.1162414, 9.896161 um.
     {"fused_silica", false, {1.45653, 1.45991, 1.46557}, {0.0, 0.0, 0.0}, k_wl,
@@ -34,41 +45,35 @@ constexpr std::array<FresnelMaterial, 13> k_materials{{
      "Z. Phys. 15, 358-368 (1923)"},
 
     // Gold: Johnson & Christy 1972, lerp 0.6168-0.6595, 0.5486-0.5821, 0.4305-0.4509.
-    {"gold", true, {0.1556, 0.4241, 1.3831}, {3.6024, 2.4721, 1.9155}, k_wl,
-     "P. B. Johnson and R. W. Christy, \"Optical constants of the noble metals\", Phys. Rev. B 6, 4370-4379 (1972)"},
+    {"gold", true, {0.1556, 0.4241, 1.3831}, {3.6024, 2.4721, 1.9155}, k_wl, k_johnson_christy_1972},
     // Silver: Johnson & Christy 1972, same rows as gold.
-    {"silver", true, {0.0522, 0.0596, 0.0400}, {4.4094, 3.5974, 2.6484}, k_wl,
-     "P. B. Johnson and R. W. Christy, \"Optical constants of the noble metals\", Phys. Rev. B 6, 4370-4379 (1972)"},
+    {"silver", true, {0.0522, 0.0596, 0.0400}, {4.4094, 3.5974, 2.6484}, k_wl, k_johnson_christy_1972},
     // Copper: Johnson & Christy 1972, same rows as gold.
-    {"copper", true, {0.2378, 1.0066, 1.2404}, {3.6264, 2.5823, 2.3929}, k_wl,
-     "P. B. Johnson and R. W. Christy, \"Optical constants of the noble metals\", Phys. Rev. B 6, 4370-4379 (1972)"},
+    {"copper", true, {0.2378, 1.0066, 1.2404}, {3.6264, 2.5823, 2.3929}, k_wl, k_johnson_christy_1972},
     // Aluminium (evaporated films): Rakic 1995 tabulated n, k, lerp 0.61993-0.65225, 0.51660-0.56357,
     // 0.44280-0.47687.
     {"aluminium", true, {1.5580, 1.0152, 0.6332}, {7.7124, 6.6273, 5.4544}, k_wl,
-     "A. D. Rakic, \"Algorithm for the determination of intrinsic optical constants of metal films: application "
-     "to aluminum\", Appl. Opt. 34, 4755-4767 (1995)"},
-    // Iron: Johnson & Christy 1974 (Rakic et al. 1998 has no iron), lerp 0.617-0.659, 0.549-0.582, 0.431-0.451.
-    {"iron", true, {2.9114, 2.9497, 2.5845}, {3.0893, 2.9318, 2.7670}, k_wl,
-     "P. B. Johnson and R. W. Christy, \"Optical constants of transition metals: Ti, V, Cr, Mn, Fe, Co, Ni, and "
-     "Pd\", Phys. Rev. B 9, 5056-5070 (1974)"},
+     "A. D. Rakic, \"Algorithm for the determination of intrinsic optical constants of metal films: "
+     "application to aluminum\", Appl. Opt. 34, 4755-4767 (1995)"},
+    // Iron: Johnson & Christy 1974 (Rakic et al. 1998 has no iron), lerp 0.617-0.659, 0.549-0.582,
+    // 0.431-0.451.
+    {"iron", true, {2.9114, 2.9497, 2.5845}, {3.0893, 2.9318, 2.7670}, k_wl, k_johnson_christy_1974},
     // Titanium, chromium, nickel, platinum: the Lorentz-Drude model of Rakic et al. 1998 (their fitted
     // parameters, which reproduce the measured data they compiled), evaluated on a fine grid and interpolated
     // between the two grid points around each wavelength (the grid steps are under 4 nm).
-    {"titanium", true, {2.0945, 1.7896, 1.3343}, {3.1986, 3.0017, 2.7596}, k_wl,
-     "A. D. Rakic, A. B. Djurisic, J. M. Elazar, M. L. Majewski, \"Optical properties of metallic films for "
-     "vertical-cavity optoelectronic devices\", Appl. Opt. 37, 5271-5283 (1998), Lorentz-Drude model"},
-    {"chromium", true, {3.5348, 2.9008, 2.1448}, {4.3476, 4.2311, 3.8623}, k_wl,
-     "A. D. Rakic, A. B. Djurisic, J. M. Elazar, M. L. Majewski, \"Optical properties of metallic films for "
-     "vertical-cavity optoelectronic devices\", Appl. Opt. 37, 5271-5283 (1998), Lorentz-Drude model"},
-    {"nickel", true, {2.0587, 1.8145, 1.6493}, {3.7635, 3.2587, 2.6705}, k_wl,
-     "A. D. Rakic, A. B. Djurisic, J. M. Elazar, M. L. Majewski, \"Optical properties of metallic films for "
-     "vertical-cavity optoelectronic devices\", Appl. Opt. 37, 5271-5283 (1998), Lorentz-Drude model"},
-    {"platinum", true, {2.3699, 2.0908, 1.8511}, {4.2536, 3.7036, 3.1398}, k_wl,
-     "A. D. Rakic, A. B. Djurisic, J. M. Elazar, M. L. Majewski, \"Optical properties of metallic films for "
-     "vertical-cavity optoelectronic devices\", Appl. Opt. 37, 5271-5283 (1998), Lorentz-Drude model"},
+    // Titanium: lerp 0.64878-0.65193, 0.54781-0.55047, 0.44934-0.45152.
+    {"titanium", true, {2.0945, 1.7896, 1.3343}, {3.1986, 3.0017, 2.7596}, k_wl, k_rakic_1998},
+    // Chromium: lerp 0.64872-0.65231, 0.54960-0.55264, 0.44795-0.45044.
+    {"chromium", true, {3.5348, 2.9008, 2.1448}, {4.3476, 4.2311, 3.8623}, k_wl, k_rakic_1998},
+    // Nickel: lerp 0.64983-0.65193, 0.54958-0.55136, 0.44862-0.45006.
+    {"nickel", true, {2.0587, 1.8145, 1.6493}, {3.7635, 3.2587, 2.6705}, k_wl, k_rakic_1998},
+    // Platinum: lerp 0.64977-0.65232, 0.54908-0.55123, 0.44967-0.45144.
+    {"platinum", true, {2.3699, 2.0908, 1.8511}, {4.2536, 3.7036, 3.1398}, k_wl, k_rakic_1998},
 }};
 
-constexpr char ascii_lower(char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
+constexpr char ascii_lower(char c) {
+  return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
+}
 
 constexpr bool equal_ignoring_case(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;

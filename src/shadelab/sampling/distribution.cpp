@@ -23,7 +23,6 @@ Result<Distribution1D> Distribution1D::create(std::span<const double> values) {
   if (d.m_integral == 0.0) {
     // An all-zero table samples uniformly, so callers never divide by a zero integral.
     for (std::size_t i = 0; i <= values.size(); ++i) d.m_cdf[i] = static_cast<double>(i) / n;
-    std::fill(d.m_func.begin(), d.m_func.end(), 1.0);
     d.m_integral = 0.0;
   } else {
     for (auto& c : d.m_cdf) c /= d.m_integral;
@@ -41,9 +40,15 @@ Distribution1D::Sample Distribution1D::sample(double u) const {
   double t = width > 0.0 ? (u - m_cdf[i]) / width : 0.0;
   t = std::clamp(t, 0.0, 1.0);
   const auto n = static_cast<double>(m_func.size());
+  double x = std::min((static_cast<double>(i) + t) / n, std::nextafter(1.0, 0.0));
+  // pdf() puts x in bin floor(x n). Rounding can move x across an edge of bin i (t rounding to 1 just below
+  // a CDF step, or (i / n) n < i), which would give it the density of a neighbour, 0 if that one is empty:
+  // step x by ulps back into bin i (one or two steps at most).
+  while (x > 0.0 && static_cast<std::size_t>(x * n) > i) x = std::nextafter(x, 0.0);
+  while (static_cast<std::size_t>(x * n) < i) x = std::nextafter(x, 1.0);
   Sample s;
   s.index = i;
-  s.x = std::min((static_cast<double>(i) + t) / n, std::nextafter(1.0, 0.0));
+  s.x = x;
   s.pdf = pdf(s.x);
   return s;
 }

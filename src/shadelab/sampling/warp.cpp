@@ -14,7 +14,9 @@ double sin_from_cos(double c) { return std::sqrt(std::max(0.0, 1.0 - c * c)); }
 
 double azimuth(const Vec3& w) {
   const double phi = std::atan2(w.y, w.x);
-  return phi < 0.0 ? phi + two_pi : phi;
+  // atan2 is in [-pi, pi]; a negative phi smaller than half an ulp of 2 pi would round up to 2 pi itself, so
+  // the result is capped at the largest double below 2 pi to keep it in [0, 2 pi).
+  return phi < 0.0 ? std::min(phi + two_pi, std::nextafter(two_pi, 0.0)) : phi;
 }
 
 // Hemisphere: z = u0 is uniform in [0,1] because d(omega) = dz dphi.

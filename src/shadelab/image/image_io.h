@@ -1,0 +1,80 @@
+// shadelab image files: read and write OpenEXR, Radiance RGBE and PNG as linear RGB float Images.
+//
+// Contract (details and reasons in docs/images.md):
+// - The format is chosen by the file extension, case-insensitive: .exr (OpenEXR), .hdr / .pic (Radiance
+//   RGBE), .png. Any other extension is an error. The file's content must match its extension.
+// - read_image returns linear RGB with row 0 at the top. PNG (8 or 16 bit) is decoded with the exact sRGB
+//   curve (srgb.h); gAMA / iCCP chunks are ignored. EXR and HDR values are taken as stored (no EXPOSURE or
+//   PRIMARIES conversion). Grey becomes R = G = B; alpha is dropped, never multiplied in.
+// - EXR: the R, G, B channels (one missing reads as 0), else Y (grey), else luminance/chroma (Y, RY, BY);
+//   other channels and layers are ignored; half, float or uint; any compression; scan lines or tiles (the
+//   full-resolution level); the first part of a multi-part file. The image covers the display window:
+//   texels outside the data window are 0, data outside the display window is cropped.
+// - NaN and +-Inf values are replaced by 0 and counted in ReadInfo::nonfinite_repaired; negative values are
+//   kept as they are and counted in ReadInfo::negative_values.
+// - Every failure (missing, empty, truncated or corrupt file, unknown extension, zero or too large size) is
+//   an Error whose one-line message names the file. Nothing throws, nothing prints.
+// - Writing is atomic (write_file_atomically): a temporary file in the target's directory, renamed over the
+//   target only when complete; on failure the temporary is removed and an existing target is untouched.
+// - Different files may be read and written from different threads at once.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "shadelab/core/error.h"
+#include "shadelab/image/image.h"
+
+namespace shadelab {
+
+// The largest image read_image accepts, in pixels (16384 x 8192: 1.5 GiB of floats).
+inline constexpr long long max_image_pixels = 16384LL * 8192LL;
+
+// What read_image found in the file, beyond the pixels.
+struct ReadInfo {
+  std::string format;           // "exr", "hdr" or "png"
+  std::string sample_type;      // "half", "float" or "uint" (EXR), "rgbe" (HDR), "uint8" or "uint16" (PNG)
+  int channels = 0;             // channels in the file (EXR: all channels; PNG: 1 to 4; HDR: 3)
+  bool had_alpha = false;       // the file had an alpha channel, which was dropped
+  bool grey = false;            // the file was grey / luminance only, copied to R, G and B
+  bool partial_data_window = false;  // EXR: the data window differs from the display window
+  int nonfinite_repaired = 0;   // float values that were NaN or +-Inf and are now 0
+  int negative_values = 0;      // float values below 0, kept as they are
+};
+
+// Reads an image; `info`, when given, is filled on success.
+Result<Image> read_image(const std::filesystem::path& path, ReadInfo* info = nullptr);
+
+enum class ExrPixelType {
+  float32,  // exact: 32-bit IEEE float per channel
+  half,     // 16-bit half float; finite values beyond +-65504 are clamped to +-65504
+};
+
+enum class ExrCompression {
+  none,
+  rle,
+  zips,  // zlib, one scan line per block
+  zip,   // zlib, 16 scan lines per block
+  piz,   // wavelet + Huffman; the usual choice for noisy half images
+};
+
+// Options for write_image. The defaults write an exact, lossless file.
+struct WriteOptions {
+  ExrPixelType exr_pixel_type = ExrPixelType::float32;
+  ExrCompression exr_compression = ExrCompression::zip;
+  // PNG only: pixels are multiplied by 2^exposure (stops) before clamping to [0, 1] and sRGB encoding.
+  double exposure = 0.0;
+};
+
+// Writes `bytes` to `path` atomically: to a new temporary file in the same directory (created exclusively,
+// flushed with fsync), renamed over `path` only when complete. On failure the temporary is removed, an
+// existing `path` is untouched, and the Error names `path`. write_image uses it; so can any other writer.
+Result<bool> write_file_atomically(const std::filesystem::path& path, const std::vector<char>& bytes);
+
+// Writes `image` by extension: .exr (OpenEXR, R G B channels, options above), .hdr / .pic (Radiance RGBE;
+// negative and non-finite values are written as 0, as RGBE cannot hold them), .png (8-bit sRGB, exposure
+// applied, clamped to [0, 1], rounded to the nearest code, NaN -> 0). Returns true or an Error.
+Result<bool> write_image(const Image& image, const std::filesystem::path& path, const WriteOptions& options = {});
+
+}  // namespace shadelab
