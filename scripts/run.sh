@@ -6,5 +6,5 @@ bash scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake --preset release
 cmake --build --preset release -j "$jobs" --target shadelab
-if [ $# -eq 0 ]; then set -- zoo; fi
+if [ $# -eq 0 ]; then set -- render; fi
 ./build/release/tools/shadelab/shadelab "$@"

@@ -78,6 +78,13 @@ const std::vector<std::vector<double>>& ParamValues::lobes(std::string_view name
 
 bool ParamValues::is_set(std::string_view name) const { return get(name).explicit_set; }
 
+void ParamValues::set_numbers(std::string_view name, std::vector<double> numbers) {
+  const auto it = m_values.find(name);
+  if (it == m_values.end()) throw std::logic_error("ParamValues: undeclared parameter " + std::string(name));
+  it->second.numbers = std::move(numbers);
+  it->second.explicit_set = true;
+}
+
 namespace {
 
 Result<bool> check_range(const std::string& where, double v, double lo, double hi) {

@@ -42,6 +42,9 @@ class ParamValues {
   const std::vector<std::vector<double>>& lobes(std::string_view name) const;
   // True when the user set this parameter explicitly (not from its default).
   bool is_set(std::string_view name) const;
+  // Overrides a scalar or colour parameter with already-validated numbers (textures at render time); the
+  // caller keeps them in the parameter's range. Unknown names throw std::logic_error (a programming error).
+  void set_numbers(std::string_view name, std::vector<double> numbers);
 
  private:
   friend Result<ParamValues> parse_params(std::string_view, const std::vector<ParamSpec>&,

@@ -1,0 +1,260 @@
+#include "shadelab/analysis/chi_square.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "shadelab/analysis/albedo.h"
+#include "shadelab/core/constants.h"
+#include "shadelab/core/frame.h"
+#include "shadelab/sampling/rng.h"
+#include "shadelab/sampling/warp.h"
+
+namespace shadelab {
+
+namespace {
+
+constexpr double tiny = 1e-300;
+constexpr double epsilon = std::numeric_limits<double>::epsilon();
+
+// log of x^a e^(-x) / Gamma(a), the common factor of the series and the continued fraction.
+double log_gamma_prefactor(double a, double x) { return a * std::log(x) - x - std::lgamma(a); }
+
+// P(a, x) = x^a e^-x / Gamma(a) * sum_k x^k / (a (a+1) ... (a+k)) (Abramowitz & Stegun 6.5.29).
+double gamma_p_series(double a, double x) {
+  double term = 1.0 / a;
+  double sum = term;
+  double ap = a;
+  for (int k = 0; k < 100000; ++k) {
+    ap += 1.0;
+    term *= x / ap;
+    sum += term;
+    if (std::abs(term) < std::abs(sum) * 0.5 * epsilon) break;
+  }
+  return sum * std::exp(log_gamma_prefactor(a, x));
+}
+
+// Q(a, x) = x^a e^-x / Gamma(a) * 1/(x+1-a- 1(1-a)/(x+3-a- 2(2-a)/(x+5-a- ...))) (A&S 6.5.31 in its even
+// form), evaluated with the modified Lentz method (Lentz 1976; Thompson & Barnett 1986).
+double gamma_q_fraction(double a, double x) {
+  double b = x + 1.0 - a;
+  double c = 1.0 / tiny;
+  double d = 1.0 / b;
+  double h = d;
+  for (int i = 1; i < 100000; ++i) {
+    const double an = -i * (i - a);
+    b += 2.0;
+    d = an * d + b;
+    if (std::abs(d) < tiny) d = tiny;
+    c = b + an / c;
+    if (std::abs(c) < tiny) c = tiny;
+    d = 1.0 / d;
+    const double delta = d * c;
+    h *= delta;
+    if (std::abs(delta - 1.0) < epsilon) break;
+  }
+  return std::exp(log_gamma_prefactor(a, x)) * h;
+}
+
+Vec3 cell_direction(double z, double phi) {
+  return spherical_direction(std::sqrt(std::max(0.0, 1.0 - z * z)), z, phi);
+}
+
+}  // namespace
+
+double regularized_gamma_p(double a, double x) {
+  if (!(a > 0.0) || std::isnan(x)) return std::numeric_limits<double>::quiet_NaN();
+  if (x <= 0.0) return 0.0;
+  if (std::isinf(x)) return 1.0;
+  return x < a + 1.0 ? gamma_p_series(a, x) : 1.0 - gamma_q_fraction(a, x);
+}
+
+double regularized_gamma_q(double a, double x) {
+  if (!(a > 0.0) || std::isnan(x)) return std::numeric_limits<double>::quiet_NaN();
+  if (x <= 0.0) return 1.0;
+  if (std::isinf(x)) return 0.0;
+  return x < a + 1.0 ? 1.0 - gamma_p_series(a, x) : gamma_q_fraction(a, x);
+}
+
+double chi_square_p_value(double statistic, double dof) {
+  if (!(dof > 0.0)) return 1.0;  // nothing to test
+  return regularized_gamma_q(0.5 * dof, 0.5 * statistic);  // upper tail of chi^2_dof
+}
+
+double sidak_significance(double alpha, int tests) {
+  if (tests <= 1) return alpha;
+  return -std::expm1(std::log1p(-alpha) / tests);  // 1 - (1 - alpha)^(1/k) (Sidak 1967)
+}
+
+ChiSquareResult chi_square_test(const Brdf& f, const Vec3& wo, const ChiSquareOptions& options) {
+  ChiSquareResult r;
+  r.rows = std::max(2, options.cos_theta_bins);
+  r.cols = std::max(1, options.phi_bins);
+  const std::size_t cells = static_cast<std::size_t>(r.rows) * static_cast<std::size_t>(r.cols);
+  r.observed.assign(cells, 0.0);
+  r.expected.assign(cells, 0.0);
+  r.samples = options.samples;
+
+  // Observed counts.
+  Pcg32 rng(options.seed, 0x6368693273717561ULL);
+  for (std::uint64_t i = 0; i < options.samples; ++i) {
+    const Vec2 u{rng.next_double(), rng.next_double()};
+    const double u_lobe = rng.next_double();
+    const Vec3 wi = f.sample(wo, u, u_lobe).wi;
+    if (!is_finite(wi)) {
+      ++r.invalid_samples;
+      continue;
+    }
+    const double z = std::clamp(wi.z, -1.0, 1.0);
+    const int row = std::min(r.rows - 1, static_cast<int>((z + 1.0) * 0.5 * r.rows));
+    const int col = std::min(r.cols - 1, static_cast<int>(azimuth(wi) * inv_two_pi * r.cols));
+    r.observed[static_cast<std::size_t>(row) * r.cols + col] += 1.0;
+  }
+
+  // Expected counts: N times the integral of the pdf over each cell, d(omega) = dz dphi.
+  const double n = static_cast<double>(options.samples);
+  QuadratureOptions q;
+  q.rel_tol = options.cell_rel_tol;
+  q.abs_tol = n > 0.0 ? 1e-2 / n : 0.0;  // 0.01 counts per cell
+  q.initial_intervals = 2;
+  q.max_subdivisions = 200;
+  QuadratureOptions inner = q;
+  inner.rel_tol = 0.1 * q.rel_tol;
+  r.integration_converged = true;
+  // Reflection samplers have an integrable singularity at wi = -wo (the Jacobian 1 / (4 |wo.h|)); a cell that
+  // contains it is split there, so that it sits at a corner of the pieces, where nested Gauss-Kronrod copes.
+  const double z_s = -wo.z;
+  const double phi_s = azimuth(-wo);
+  const auto pieces = [](double lo, double hi, double split) {
+    std::vector<double> edges{lo};
+    if (split > lo && split < hi) edges.push_back(split);
+    edges.push_back(hi);
+    return edges;
+  };
+  for (int row = 0; row < r.rows; ++row) {
+    const double z0 = -1.0 + 2.0 * row / r.rows;
+    const double z1 = -1.0 + 2.0 * (row + 1) / r.rows;
+    const std::vector<double> z_edges = pieces(z0, z1, z_s);
+    for (int col = 0; col < r.cols; ++col) {
+      const double phi0 = two_pi * col / r.cols;
+      const double phi1 = two_pi * (col + 1) / r.cols;
+      const std::vector<double> phi_edges = pieces(phi0, phi1, phi_s);
+      double probability = 0.0;
+      for (std::size_t i = 0; i + 1 < z_edges.size(); ++i) {
+        inner.abs_tol = 0.1 * q.abs_tol / (z_edges[i + 1] - z_edges[i]);
+        for (std::size_t j = 0; j + 1 < phi_edges.size(); ++j) {
+          const double pa = phi_edges[j];
+          const double pb = phi_edges[j + 1];
+          const QuadratureResult p = integrate_2d(
+              [&](double z, double phi) { return f.pdf(cell_direction(z, phi), wo); }, z_edges[i], z_edges[i + 1],
+              [pa](double) { return pa; }, [pb](double) { return pb; }, q, inner);
+          r.integration_converged = r.integration_converged && p.converged;
+          probability += p.value;
+        }
+      }
+      r.expected[static_cast<std::size_t>(row) * r.cols + col] = n * probability;
+    }
+  }
+  r.expected_total = std::accumulate(r.expected.begin(), r.expected.end(), 0.0);
+
+  // Pool cells in increasing order of expectation into groups of at least min_expected.
+  std::vector<std::size_t> order(cells);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.expected[a] < r.expected[b]; });
+  std::vector<std::pair<double, double>> groups;  // (observed, expected)
+  double acc_o = 0.0;
+  double acc_e = 0.0;
+  int acc_cells = 0;
+  for (std::size_t idx : order) {
+    const double e = r.expected[idx];
+    const double o = r.observed[idx];
+    if (e <= 0.0) {
+      if (o > 0.0) r.unexpected_samples += static_cast<std::uint64_t>(o);
+      continue;
+    }
+    acc_o += o;
+    acc_e += e;
+    ++acc_cells;
+    if (acc_e >= options.min_expected) {
+      if (acc_cells > 1) r.pooled_cells += acc_cells;
+      groups.emplace_back(acc_o, acc_e);
+      acc_o = acc_e = 0.0;
+      acc_cells = 0;
+    }
+  }
+  if (acc_cells > 0) {
+    r.pooled_cells += acc_cells;
+    if (groups.empty()) {
+      groups.emplace_back(acc_o, acc_e);
+    } else {
+      groups.back().first += acc_o;
+      groups.back().second += acc_e;
+    }
+  }
+  for (const auto& [o, e] : groups) r.statistic += (o - e) * (o - e) / e;  // Pearson's statistic
+  r.degrees_of_freedom = std::max(0, static_cast<int>(groups.size()) - 1);
+  r.p_value = chi_square_p_value(r.statistic, r.degrees_of_freedom);
+  if (r.invalid_samples > 0 || r.unexpected_samples > 0) r.p_value = 0.0;
+  return r;
+}
+
+SampleConsistency sample_consistency(const Brdf& f, const Vec3& wo, std::uint64_t count, std::uint64_t seed) {
+  SampleConsistency c;
+  c.samples = count;
+  Pcg32 rng(seed, 0x636f6e73697374ULL);
+  constexpr double weight_floor = 1e-12;  // weights are O(albedo); below this a difference is immaterial
+  for (std::uint64_t i = 0; i < count; ++i) {
+    const Vec2 u{rng.next_double(), rng.next_double()};
+    const double u_lobe = rng.next_double();
+    const BrdfSample s = f.sample(wo, u, u_lobe);
+    if (!is_finite(s.wi) || !std::isfinite(s.pdf) || !is_finite(s.weight)) {
+      ++c.non_finite;
+      continue;
+    }
+    if (s.pdf == 0.0) {
+      ++c.zero_pdf;
+      continue;
+    }
+    const double p = f.pdf(s.wi, wo);
+    const double pdf_scale = std::max(std::abs(p), std::abs(s.pdf));
+    const double pdf_err = std::abs(s.pdf - p) / pdf_scale;  // relative, pdf_scale > 0 here
+    if (pdf_err > c.max_pdf_error) {
+      c.max_pdf_error = pdf_err;
+      c.worst_pdf_wi = s.wi;
+    }
+    if (s.wi.z <= 0.0) {
+      ++c.below_horizon;
+      if (!s.weight.is_black()) ++c.nonzero_weight_below_horizon;
+      continue;
+    }
+    const Rgb expected = p > 0.0 ? f.eval(s.wi, wo) * (s.wi.z / p) : Rgb{};  // f cos / pdf
+    for (int k = 0; k < 3; ++k) {
+      const double scale = std::max({std::abs(expected[k]), std::abs(s.weight[k]), weight_floor});
+      const double err = std::abs(s.weight[k] - expected[k]) / scale;
+      if (!(err <= c.max_weight_error)) {
+        c.max_weight_error = std::isnan(err) ? std::numeric_limits<double>::infinity() : err;
+        c.worst_weight_wi = s.wi;
+      }
+    }
+  }
+  return c;
+}
+
+QuadratureResult pdf_integral(const Brdf& f, const Vec3& wo, const QuadratureOptions& options) {
+  // The upper half about the pdf's peak there. The lower half about -wo, where every sampler that reflects
+  // wo about a sampled half vector h has an integrable singularity (the Jacobian 1 / (4 |wo.h|) with wo.h -> 0),
+  // which polar coordinates about it smooth out; unless a genuine lobe peaks below the horizon.
+  const Vec3 upper = lobe_peak(f, wo, LobeQuantity::pdf_upper);
+  const Vec3 lower_peak = lobe_peak(f, wo, LobeQuantity::pdf_lower);
+  const Vec3 near_antipode = Frame::from_normal(-wo).to_world(spherical_direction(std::sin(1e-3), std::cos(1e-3), 0.0));
+  // A peak search that climbed into the singularity stops near -wo but not on it; -wo itself is the centre.
+  const bool genuine_lobe = f.pdf(lower_peak, wo) > 10.0 * f.pdf(near_antipode, wo) && dot(lower_peak, -wo) < std::cos(0.05);
+  const Vec3 lower = genuine_lobe ? lower_peak : -wo;
+  const VectorQuadratureResult q = integrate_sphere(
+      [&](const Vec3& wi, std::span<double> out) { out[0] = f.pdf(wi, wo); }, 1, upper.z > 0.0 ? upper : Vec3{0, 0, 1},
+      lower, options);
+  return {q.value[0], q.error[0], q.evaluations, q.subdivisions, q.converged};
+}
+
+}  // namespace shadelab
