@@ -1,0 +1,621 @@
+#include "shadelab/render/path_tracer.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "shadelab/core/constants.h"
+#include "shadelab/core/frame.h"
+#include "shadelab/render/accel.h"
+#include "shadelab/render/env_light.h"
+#include "shadelab/sampling/rng.h"
+#include "shadelab/sampling/warp.h"
+
+namespace shadelab {
+
+namespace {
+
+// Power heuristic with beta = 2 (Veach 1997, eq. 9.13).
+double power_heuristic(double pa, double pb) {
+  const double a = pa * pa;
+  const double b = pb * pb;
+  return a + b > 0.0 ? a / (a + b) : 0.0;
+}
+
+struct MaterialRuntime {
+  const ModelInfo* info = nullptr;
+  std::optional<ParamValues> base;
+  std::shared_ptr<const Brdf> brdf;
+  bool textured = false;
+  bool ks_is_f0 = false;  // cook-torrance with Schlick: the specular texture drives f0
+};
+
+struct LightRef {
+  enum class Type { directional, point, spot, sphere_light, emissive_sphere, quad, disk, environment } type;
+  int index = 0;  // into Scene::lights for the first four, into the shape lists otherwise
+};
+
+struct LightSample {
+  Vec3 wi;
+  double distance = std::numeric_limits<double>::infinity();
+  Rgb value;          // radiance (area and environment lights) or E_perp (delta lights)
+  double pdf = 0.0;   // per unit solid angle; 1 for delta lights
+  bool delta = false;
+  bool valid = false;
+};
+
+struct Counters {
+  std::uint64_t rays = 0;
+};
+
+struct FirstHit {
+  bool hit = false;
+  Rgb albedo;
+  Vec3 normal;
+  double depth = 0.0;
+};
+
+// Direction toward a uniformly chosen point of the cone a sphere subtends (PBR 4th ed. 6.2.4): exact pdf
+// 1 / (2 pi (1 - cos_max)) over the cone.
+double sphere_cone_cos(const Vec3& p, const Vec3& center, double radius) {
+  const double d2 = dot(center - p, center - p);
+  if (d2 <= radius * radius) return 2.0;  // inside: no cone
+  return std::sqrt(std::max(0.0, 1.0 - radius * radius / d2));
+}
+
+// Distance along the unit direction w from p to the sphere, or infinity.
+double sphere_distance(const Vec3& p, const Vec3& w, const Vec3& center, double radius) {
+  const Vec3 oc = p - center;
+  const double b = dot(oc, w);
+  const double c = dot(oc, oc) - radius * radius;
+  const double disc = b * b - c;
+  if (disc < 0.0) return std::numeric_limits<double>::infinity();
+  const double s = std::sqrt(disc);
+  const double t0 = -b - s;
+  if (t0 > 0.0) return t0;
+  const double t1 = -b + s;
+  return t1 > 0.0 ? t1 : std::numeric_limits<double>::infinity();
+}
+
+class Integrator {
+ public:
+  Integrator(const Scene& scene, SamplingMode mode, int max_depth)
+      : m_scene(scene), m_mode(mode), m_max_depth(max_depth), m_accel(scene), m_env(scene) {}
+
+  Result<bool> prepare();
+  Rgb li(Ray ray, Pcg32& rng, Counters& counters, FirstHit* first) const;
+  const Accelerator& accel() const { return m_accel; }
+
+ private:
+  const Brdf* material_brdf(int material, Vec2 uv, BrdfPtr& holder) const;
+  LightSample sample_light(const LightRef& l, const Vec3& p, Vec2 u, double u_extra) const;
+  double light_pdf(const LightRef& l, const Vec3& p, const Vec3& wi, const Hit* hit) const;
+  Rgb emitted(const Hit& hit, const Vec3& wo_world) const;
+  int light_of_hit(const Hit& hit) const;
+
+  const Scene& m_scene;
+  SamplingMode m_mode;
+  int m_max_depth;
+  Accelerator m_accel;
+  EnvironmentLight m_env;
+  std::vector<MaterialRuntime> m_materials;
+  std::vector<LightRef> m_lights;
+  std::vector<int> m_sphere_shape_light, m_quad_light, m_disk_light;  // shape index -> light index or -1
+  int m_env_light = -1;
+};
+
+Result<bool> Integrator::prepare() {
+  for (const Material& m : m_scene.materials) {
+    MaterialRuntime rt;
+    if (!m.model.empty()) {
+      rt.info = find_brdf_model(m.model);
+      if (rt.info == nullptr) return make_error("material '" + m.name + "': unknown model '" + m.model + "'");
+      auto values = parse_params(rt.info->name, rt.info->params, m.params);
+      if (!values) return make_error("material '" + m.name + "': " + values.error().message);
+      rt.base = std::move(values).value();
+      if (m.brdf) {
+        rt.brdf = m.brdf;
+      } else {
+        auto b = rt.info->create(*rt.base);
+        if (!b) return make_error("material '" + m.name + "': " + b.error().message);
+        rt.brdf = std::shared_ptr<const Brdf>(std::move(b).value());
+      }
+      rt.textured = m.textured();
+      auto has = [&](const char* name) {
+        return std::any_of(rt.info->params.begin(), rt.info->params.end(), [&](const ParamSpec& s) { return s.name == name; });
+      };
+      if (m.kd_texture >= 0 && !has("kd")) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameter kd for its kd texture");
+      if (m.gloss_texture >= 0 && !has("n")) return make_error("material '" + m.name + "': model '" + m.model + "' has no exponent n for its gloss texture");
+      rt.ks_is_f0 = m.model == "cook-torrance" && rt.base->choice("f") == "schlick";
+      if (m.ks_texture >= 0 && !rt.ks_is_f0 && !has("ks")) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameter ks for its ks texture");
+    }
+    m_materials.push_back(std::move(rt));
+  }
+  for (std::size_t i = 0; i < m_scene.lights.size(); ++i) {
+    const auto& l = m_scene.lights[i];
+    const int idx = static_cast<int>(i);
+    if (std::holds_alternative<DirectionalLight>(l)) m_lights.push_back({LightRef::Type::directional, idx});
+    if (std::holds_alternative<PointLight>(l)) m_lights.push_back({LightRef::Type::point, idx});
+    if (std::holds_alternative<SpotLight>(l)) m_lights.push_back({LightRef::Type::spot, idx});
+    if (std::holds_alternative<SphereLight>(l)) m_lights.push_back({LightRef::Type::sphere_light, idx});
+  }
+  auto emissive = [&](int material) {
+    return material >= 0 && !m_scene.materials[static_cast<std::size_t>(material)].emission.is_black();
+  };
+  m_sphere_shape_light.assign(m_scene.spheres.size(), -1);
+  for (std::size_t i = 0; i < m_scene.spheres.size(); ++i) {
+    if (emissive(m_scene.spheres[i].material)) {
+      m_sphere_shape_light[i] = static_cast<int>(m_lights.size());
+      m_lights.push_back({LightRef::Type::emissive_sphere, static_cast<int>(i)});
+    }
+  }
+  m_quad_light.assign(m_scene.quads.size(), -1);
+  for (std::size_t i = 0; i < m_scene.quads.size(); ++i) {
+    if (emissive(m_scene.quads[i].material)) {
+      m_quad_light[i] = static_cast<int>(m_lights.size());
+      m_lights.push_back({LightRef::Type::quad, static_cast<int>(i)});
+    }
+  }
+  m_disk_light.assign(m_scene.disks.size(), -1);
+  for (std::size_t i = 0; i < m_scene.disks.size(); ++i) {
+    if (emissive(m_scene.disks[i].material)) {
+      m_disk_light[i] = static_cast<int>(m_lights.size());
+      m_lights.push_back({LightRef::Type::disk, static_cast<int>(i)});
+    }
+  }
+  if (m_env.has_light()) {
+    m_env_light = static_cast<int>(m_lights.size());
+    m_lights.push_back({LightRef::Type::environment, 0});
+  }
+  return true;
+}
+
+const Brdf* Integrator::material_brdf(int material, Vec2 uv, BrdfPtr& holder) const {
+  if (material < 0) return nullptr;
+  const MaterialRuntime& rt = m_materials[static_cast<std::size_t>(material)];
+  if (!rt.textured || rt.info == nullptr) return rt.brdf.get();
+  const Material& m = m_scene.materials[static_cast<std::size_t>(material)];
+  ParamValues v = *rt.base;
+  if (m.kd_texture >= 0) {
+    const Rgb c = sample_texture(m_scene.textures[static_cast<std::size_t>(m.kd_texture)], uv);
+    v.set_numbers("kd", {c.r, c.g, c.b});
+  }
+  if (m.ks_texture >= 0) {
+    const Rgb c = sample_texture(m_scene.textures[static_cast<std::size_t>(m.ks_texture)], uv);
+    v.set_numbers(rt.ks_is_f0 ? "f0" : "ks", {c.r, c.g, c.b});
+  }
+  if (m.gloss_texture >= 0) {
+    const double g = sample_texture(m_scene.textures[static_cast<std::size_t>(m.gloss_texture)], uv).r;
+    v.set_numbers("n", {m.gloss_encoding.exponent_from_gloss(g)});  // the zoo's logarithmic gloss encoding
+  }
+  auto b = rt.info->create(v);
+  if (!b) return rt.brdf.get();  // validated at load; a texture cannot make it fail
+  holder = std::move(b).value();
+  return holder.get();
+}
+
+int Integrator::light_of_hit(const Hit& hit) const {
+  switch (hit.kind) {
+    case ShapeKind::sphere: return m_sphere_shape_light[static_cast<std::size_t>(hit.index)];
+    case ShapeKind::quad: return m_quad_light[static_cast<std::size_t>(hit.index)];
+    case ShapeKind::disk: return m_disk_light[static_cast<std::size_t>(hit.index)];
+    case ShapeKind::sphere_light:
+      for (std::size_t i = 0; i < m_lights.size(); ++i) {
+        if (m_lights[i].type == LightRef::Type::sphere_light && m_lights[i].index == hit.index) return static_cast<int>(i);
+      }
+      return -1;
+    case ShapeKind::mesh: return -1;  // emissive meshes are reached by BRDF sampling only (MIS weight 1)
+  }
+  return -1;
+}
+
+Rgb Integrator::emitted(const Hit& hit, const Vec3& wo_world) const {
+  if (hit.kind == ShapeKind::sphere_light) {
+    return std::get<SphereLight>(m_scene.lights[static_cast<std::size_t>(hit.index)]).radiance;
+  }
+  if (hit.material < 0) return {};
+  const Rgb& e = m_scene.materials[static_cast<std::size_t>(hit.material)].emission;
+  if (e.is_black()) return {};
+  // Quads, disks and meshes emit on their normal's side; spheres outward (their normal points out).
+  return dot(hit.geometric_normal, wo_world) > 0.0 ? e : Rgb{};
+}
+
+LightSample Integrator::sample_light(const LightRef& l, const Vec3& p, Vec2 u, double u_extra) const {
+  LightSample s;
+  switch (l.type) {
+    case LightRef::Type::directional:
+    case LightRef::Type::point:
+    case LightRef::Type::spot: {
+      const auto& light = m_scene.lights[static_cast<std::size_t>(l.index)];
+      const LightIncidence in = std::visit(
+          [&](const auto& x) -> LightIncidence {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (std::is_same_v<T, DirectionalLight> || std::is_same_v<T, PointLight> ||
+                          std::is_same_v<T, SpotLight>) {
+              return incident(x, p);
+            } else {
+              return {};
+            }
+          },
+          light);
+      if (in.irradiance_perp.is_black()) return s;
+      s.wi = in.wi;
+      s.distance = in.distance;
+      s.value = in.irradiance_perp;
+      s.pdf = 1.0;
+      s.delta = true;
+      s.valid = true;
+      return s;
+    }
+    case LightRef::Type::sphere_light:
+    case LightRef::Type::emissive_sphere: {
+      Vec3 center;
+      double radius = 1.0;
+      Rgb radiance;
+      if (l.type == LightRef::Type::sphere_light) {
+        const auto& sl = std::get<SphereLight>(m_scene.lights[static_cast<std::size_t>(l.index)]);
+        center = sl.center;
+        radius = sl.radius;
+        radiance = sl.radiance;
+      } else {
+        const auto& sp = m_scene.spheres[static_cast<std::size_t>(l.index)];
+        center = sp.center;
+        radius = sp.radius;
+        radiance = m_scene.materials[static_cast<std::size_t>(sp.material)].emission;
+      }
+      const double cos_max = sphere_cone_cos(p, center, radius);
+      if (cos_max > 1.0) return s;
+      const Frame f = Frame::from_normal(normalize(center - p));
+      s.wi = f.to_world(sample_spherical_cap(u, cos_max));
+      s.distance = sphere_distance(p, s.wi, center, radius);
+      if (!std::isfinite(s.distance)) return s;  // grazing the rim: rounding
+      s.value = radiance;
+      s.pdf = 1.0 / (two_pi * (1.0 - cos_max));
+      s.valid = s.pdf > 0.0 && std::isfinite(s.pdf);
+      return s;
+    }
+    case LightRef::Type::quad: {
+      const auto& q = m_scene.quads[static_cast<std::size_t>(l.index)];
+      const Vec3 x = q.corner + q.u * u.x + q.v * u.y;
+      const Vec3 n = cross(q.u, q.v);
+      const double area = length(n);
+      const Vec3 d = x - p;
+      const double dist2 = dot(d, d);
+      s.distance = std::sqrt(dist2);
+      s.wi = d / s.distance;
+      const double cos_l = -dot(n / area, s.wi);
+      if (cos_l <= 0.0) return s;  // the back of a one-sided emitter
+      s.value = m_scene.materials[static_cast<std::size_t>(q.material)].emission;
+      s.pdf = dist2 / (cos_l * area);  // area density 1/A turned into solid angle
+      s.valid = true;
+      return s;
+    }
+    case LightRef::Type::disk: {
+      const auto& dk = m_scene.disks[static_cast<std::size_t>(l.index)];
+      const Frame f = Frame::from_normal(dk.normal);
+      const double r = dk.radius * std::sqrt(u.x);
+      const double phi = two_pi * u.y;
+      const Vec3 x = dk.center + f.to_world({r * std::cos(phi), r * std::sin(phi), 0.0});
+      const Vec3 d = x - p;
+      const double dist2 = dot(d, d);
+      s.distance = std::sqrt(dist2);
+      s.wi = d / s.distance;
+      const double cos_l = -dot(dk.normal, s.wi);
+      if (cos_l <= 0.0) return s;
+      s.value = m_scene.materials[static_cast<std::size_t>(dk.material)].emission;
+      s.pdf = dist2 / (cos_l * pi * dk.radius * dk.radius);
+      s.valid = true;
+      return s;
+    }
+    case LightRef::Type::environment: {
+      const auto e = m_env.sample(u, u_extra);
+      if (!(e.pdf > 0.0)) return s;
+      s.wi = e.wi;
+      s.value = e.radiance;
+      s.pdf = e.pdf;
+      s.valid = true;
+      return s;
+    }
+  }
+  return s;
+}
+
+double Integrator::light_pdf(const LightRef& l, const Vec3& p, const Vec3& wi, const Hit* hit) const {
+  switch (l.type) {
+    case LightRef::Type::directional:
+    case LightRef::Type::point:
+    case LightRef::Type::spot: return 0.0;
+    case LightRef::Type::sphere_light:
+    case LightRef::Type::emissive_sphere: {
+      Vec3 center;
+      double radius = 1.0;
+      if (l.type == LightRef::Type::sphere_light) {
+        const auto& sl = std::get<SphereLight>(m_scene.lights[static_cast<std::size_t>(l.index)]);
+        center = sl.center;
+        radius = sl.radius;
+      } else {
+        const auto& sp = m_scene.spheres[static_cast<std::size_t>(l.index)];
+        center = sp.center;
+        radius = sp.radius;
+      }
+      const double cos_max = sphere_cone_cos(p, center, radius);
+      return cos_max > 1.0 ? 0.0 : 1.0 / (two_pi * (1.0 - cos_max));
+    }
+    case LightRef::Type::quad:
+    case LightRef::Type::disk: {
+      if (hit == nullptr) return 0.0;
+      const double cos_l = -dot(hit->geometric_normal, wi);
+      if (cos_l <= 0.0) return 0.0;
+      double area = 0.0;
+      if (l.type == LightRef::Type::quad) {
+        const auto& q = m_scene.quads[static_cast<std::size_t>(l.index)];
+        area = length(cross(q.u, q.v));
+      } else {
+        const double r = m_scene.disks[static_cast<std::size_t>(l.index)].radius;
+        area = pi * r * r;
+      }
+      return hit->t * hit->t / (cos_l * area);
+    }
+    case LightRef::Type::environment: return m_env.pdf(wi);
+  }
+  return 0.0;
+}
+
+Rgb Integrator::li(Ray ray, Pcg32& rng, Counters& counters, FirstHit* first) const {
+  Rgb radiance;
+  Rgb beta = Rgb::gray(1.0);
+  double prev_brdf_pdf = 0.0;  // density of the BRDF sample that produced `ray` (0 for the camera ray)
+  Vec3 prev_position;
+  const double n_lights = static_cast<double>(m_lights.size());
+  for (int vertex = 1;; ++vertex) {
+    Hit hit;
+    ++counters.rays;
+    const bool found = m_accel.intersect(ray, hit);
+    const bool camera_ray = vertex == 1;
+    // MIS weight for light found by following the BRDF-sampled ray.
+    auto brdf_weight = [&](double light_density) {
+      if (camera_ray) return 1.0;
+      switch (m_mode) {
+        case SamplingMode::brdf: return 1.0;
+        case SamplingMode::light: return light_density > 0.0 ? 0.0 : 1.0;  // unsampleable emitters still count
+        case SamplingMode::mis: return power_heuristic(prev_brdf_pdf, light_density);
+      }
+      return 1.0;
+    };
+    if (!found) {
+      if (m_env.has_light()) {
+        const double lp = m_env_light >= 0 ? m_env.pdf(ray.direction) / n_lights : 0.0;
+        radiance += beta * m_env.radiance(ray.direction) * brdf_weight(lp);
+      }
+      break;
+    }
+    const Vec3 wo_world = -ray.direction;
+    const Rgb le = emitted(hit, wo_world);
+    if (!le.is_black()) {
+      const int li_index = light_of_hit(hit);
+      const double lp = li_index >= 0 ? light_pdf(m_lights[static_cast<std::size_t>(li_index)], prev_position, ray.direction, &hit) / n_lights : 0.0;
+      radiance += beta * le * brdf_weight(lp);
+    }
+    if (vertex > m_max_depth || hit.kind == ShapeKind::sphere_light) break;
+
+    // Shading frame facing the viewer (two-sided surfaces).
+    Vec3 ng = hit.geometric_normal;
+    Vec3 ns = hit.shading_normal;
+    if (dot(ng, wo_world) < 0.0) {
+      ng = -ng;
+      ns = -ns;
+    }
+    if (dot(ns, wo_world) <= 0.0) ns = ng;  // interpolated normal facing away: fall back
+    const Material* material = hit.material >= 0 ? &m_scene.materials[static_cast<std::size_t>(hit.material)] : nullptr;
+    if (material != nullptr && material->normal_texture >= 0) {
+      const Rgb t = sample_texture(m_scene.textures[static_cast<std::size_t>(material->normal_texture)], hit.uv);
+      Vec3 tangent = hit.dpdu - ns * dot(hit.dpdu, ns);
+      tangent = length(tangent) > 1e-12 ? normalize(tangent) : Frame::from_normal(ns).s;
+      const Vec3 bitangent = cross(ns, tangent);
+      const Vec3 nt = normalize(Vec3{2.0 * t.r - 1.0, 2.0 * t.g - 1.0, 2.0 * t.b - 1.0});
+      const Vec3 mapped = normalize(tangent * nt.x + bitangent * nt.y + ns * nt.z);
+      if (dot(mapped, wo_world) > 0.0) ns = mapped;
+    }
+    Vec3 tangent = hit.dpdu - ns * dot(hit.dpdu, ns);
+    Frame frame;
+    if (length(tangent) > 1e-9) {
+      frame.n = ns;
+      frame.s = normalize(tangent);
+      frame.t = cross(frame.n, frame.s);
+    } else {
+      frame = Frame::from_normal(ns);
+    }
+    BrdfPtr holder;
+    const Brdf* brdf = material_brdf(hit.material, hit.uv, holder);
+    if (brdf == nullptr) break;  // a purely emissive surface absorbs
+    const Vec3 wo = frame.to_local(wo_world);
+
+    // Next-event estimation.
+    if (m_mode != SamplingMode::brdf && !m_lights.empty()) {
+      const double u_light = rng.next_double();
+      const auto pick = std::min(static_cast<std::size_t>(u_light * n_lights), m_lights.size() - 1);
+      const Vec2 u{rng.next_double(), rng.next_double()};
+      const double u_extra = rng.next_double();
+      const LightSample ls = sample_light(m_lights[pick], hit.position, u, u_extra);
+      if (ls.valid && dot(ls.wi, ng) > 0.0) {
+        const Vec3 wi = frame.to_local(ls.wi);
+        const Rgb f = brdf->eval(wi, wo);
+        if (!f.is_black()) {
+          // The shadow ray stops short of the light: Embree's float intersection of a sphere hit near its rim
+          // is off by up to ~1e-4 relative, which would let the light occlude itself; 2e-3 is far outside that.
+          Ray shadow{offset_origin(hit.position, ng, ls.wi), ls.wi,
+                     std::isfinite(ls.distance) ? ls.distance * (1.0 - 2e-3) : ls.distance};
+          ++counters.rays;
+          if (!m_accel.occluded(shadow)) {
+            double w = 1.0;
+            if (!ls.delta && m_mode == SamplingMode::mis) w = power_heuristic(ls.pdf / n_lights, brdf->pdf(wi, wo));
+            radiance += beta * f * ls.value * (wi.z * w * n_lights / ls.pdf);
+          }
+        }
+      }
+    }
+
+    // BRDF sampling for the next direction.
+    const Vec2 u{rng.next_double(), rng.next_double()};
+    const BrdfSample bs = brdf->sample(wo, u, rng.next_double());
+    if (first != nullptr && camera_ray) {
+      first->hit = true;
+      first->albedo = bs.weight;
+      first->normal = ns;
+      first->depth = hit.t;
+    }
+    if (!(bs.pdf > 0.0) || bs.weight.is_black()) break;
+    const Vec3 wi_world = frame.to_world(bs.wi);
+    if (dot(wi_world, ng) <= 0.0) break;  // below the geometric surface: no transmission
+    beta = beta * bs.weight;
+    prev_brdf_pdf = bs.pdf;
+    prev_position = hit.position;
+    ray = Ray{offset_origin(hit.position, ng, wi_world), wi_world};
+    // Russian roulette (unbiased: survivors are divided by the survival probability).
+    if (vertex >= m_scene.settings.rr_depth && m_scene.settings.rr_depth > 0) {
+      const double q = std::min(1.0, beta.max_component());
+      if (rng.next_double() >= q) break;
+      beta = beta / q;
+    }
+  }
+  return radiance;
+}
+
+struct CameraModel {
+  Vec3 origin, forward, right, up;
+  double tan_half = 0.0;
+  double aspect = 1.0;
+  int width = 1, height = 1;
+  explicit CameraModel(const Camera& c) : origin(c.position), width(c.width), height(c.height) {
+    forward = normalize(c.look_at - c.position);
+    right = normalize(cross(forward, c.up));
+    up = cross(right, forward);
+    tan_half = std::tan(0.5 * deg_to_rad(c.vfov_deg));
+    aspect = static_cast<double>(c.width) / c.height;
+  }
+  Ray ray(double px, double py) const {
+    const double sx = (2.0 * px / width - 1.0) * tan_half * aspect;
+    const double sy = (1.0 - 2.0 * py / height) * tan_half;
+    return {origin, normalize(forward + right * sx + up * sy)};
+  }
+};
+
+std::uint64_t mix64(std::uint64_t x) {  // SplitMix64 finalizer (Steele, Lea, Flood 2014)
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30u)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27u)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31u);
+}
+
+}  // namespace
+
+Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int spp = options.spp > 0 ? options.spp : scene.settings.spp;
+  const int max_depth = options.max_depth > 0 ? options.max_depth : scene.settings.max_depth;
+  const int threads = options.threads >= 0 ? options.threads : scene.settings.threads;
+  if (spp < 1) return make_error("render: samples per pixel must be >= 1");
+  Integrator integrator(scene, options.mode, max_depth);
+  auto ok = integrator.prepare();
+  if (!ok) return ok.error();
+  const CameraModel camera(scene.camera);
+  const int w = scene.camera.width;
+  const int h = scene.camera.height;
+  const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  std::vector<Rgb> sum(pixels);
+  std::vector<Rgb> albedo_sum(options.aovs ? pixels : 0);
+  std::vector<Vec3> normal_first(options.aovs ? pixels : 0);
+  std::vector<double> depth_first(options.aovs ? pixels : 0, 0.0);
+  std::atomic<std::uint64_t> rays{0};
+  const int per_pass = std::max(1, spp / 32);
+  RenderResult result;
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  int done = 0;
+  while (done < spp) {
+    if (options.cancel != nullptr && options.cancel->load() && done > 0) {
+      result.stats.cancelled = true;
+      break;
+    }
+    const int s0 = done;
+    const int s1 = std::min(spp, done + per_pass);
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
+        Counters counters;
+        for (int y = r.rows().begin(); y != r.rows().end(); ++y) {
+          for (int x = r.cols().begin(); x != r.cols().end(); ++x) {
+            const std::size_t pi_ = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+            Rgb acc;
+            for (int s = s0; s < s1; ++s) {
+              Pcg32 rng(mix64(scene.settings.seed ^ mix64(pi_)), static_cast<std::uint64_t>(s));
+              const Ray ray = camera.ray(x + rng.next_double(), y + rng.next_double());
+              FirstHit first;
+              acc += integrator.li(ray, rng, counters, options.aovs ? &first : nullptr);
+              if (options.aovs) {
+                albedo_sum[pi_] += first.albedo;
+                if (s == 0) {
+                  normal_first[pi_] = first.hit ? first.normal : Vec3{};
+                  depth_first[pi_] = first.hit ? first.depth : 0.0;
+                }
+              }
+            }
+            sum[pi_] += acc;
+          }
+        }
+        rays.fetch_add(counters.rays, std::memory_order_relaxed);
+      });
+    });
+    done = s1;
+    if (options.progress) options.progress(static_cast<double>(done) / spp, done);
+  }
+  result.beauty = Image(w, h);
+  if (options.aovs) {
+    result.albedo = Image(w, h);
+    result.normal = Image(w, h);
+    result.depth = Image(w, h);
+  }
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+      result.beauty.set(x, y, sum[i] / done);
+      if (options.aovs) {
+        result.albedo.set(x, y, albedo_sum[i] / done);
+        result.normal.set(x, y, {normal_first[i].x, normal_first[i].y, normal_first[i].z});
+        result.depth.set(x, y, Rgb::gray(depth_first[i]));
+      }
+    }
+  }
+  result.stats.spp_done = done;
+  result.stats.camera_rays = static_cast<std::uint64_t>(done) * pixels;
+  result.stats.rays = rays.load();
+  result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+Result<RadianceEstimate> estimate_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, int samples,
+                                           SamplingMode mode, int max_depth, std::uint64_t seed) {
+  Integrator integrator(scene, mode, max_depth > 0 ? max_depth : scene.settings.max_depth);
+  auto ok = integrator.prepare();
+  if (!ok) return ok.error();
+  Counters counters;
+  Rgb sum, sum2;
+  for (int s = 0; s < samples; ++s) {
+    Pcg32 rng(mix64(seed), static_cast<std::uint64_t>(s));
+    const Rgb v = integrator.li(Ray{origin, normalize(direction)}, rng, counters, nullptr);
+    sum += v;
+    sum2 += v * v;
+  }
+  RadianceEstimate e;
+  e.mean = sum / samples;
+  const Rgb var = sum2 / samples - e.mean * e.mean;
+  e.standard_error = {std::sqrt(std::max(0.0, var.r) / samples), std::sqrt(std::max(0.0, var.g) / samples),
+                      std::sqrt(std::max(0.0, var.b) / samples)};
+  return e;
+}
+
+}  // namespace shadelab

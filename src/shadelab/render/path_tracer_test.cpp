@@ -1,0 +1,151 @@
+#include "shadelab/render/path_tracer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "shadelab/light/units.h"
+#include "shadelab/render/test_scenes.h"
+
+namespace shadelab {
+namespace {
+
+using testing::add_material;
+using testing::floor_quad;
+
+// |a - b| within k standard errors (plus a tiny absolute slack for rounding).
+void expect_within(double a, double b, double sigma, double k, const std::string& what) {
+  EXPECT_LE(std::abs(a - b), k * sigma + 1e-9) << what << ": " << a << " vs " << b << " (sigma " << sigma << ")";
+}
+
+TEST(PathTracer, WhiteFurnaceSphere) {
+  // A white Lambert sphere under a uniform environment of radiance L renders L everywhere (it cannot see itself).
+  Scene s;
+  s.environment.kind = Environment::Kind::uniform;
+  s.environment.uniform = Rgb::gray(0.5);
+  s.spheres.push_back({{0, 0, 0}, 1.0, add_material(s, "lambert", {{"kd", "1"}})});
+  s.settings.max_depth = 64;
+  for (const Vec3 d : {Vec3{0, 0, -1}, normalize(Vec3{0.3, 0.2, -1})}) {
+    for (auto mode : {SamplingMode::mis, SamplingMode::brdf, SamplingMode::light}) {
+      const auto e = estimate_radiance(s, {0, 0, 4}, d, 4000, mode).value();
+      expect_within(e.mean.g, 0.5, e.standard_error.g, 4.0, "furnace sphere");
+    }
+  }
+}
+
+TEST(PathTracer, WhiteFurnaceClosedBox) {
+  // Inside a closed box whose walls have albedo a and emit Le, the radiance is Le / (1 - a) everywhere.
+  Scene s;
+  const int m = add_material(s, "lambert", {{"kd", "0.5"}}, Rgb::gray(0.25));
+  const double h = 1.0;
+  // Six inward-facing quads (normal = u x v points inside).
+  s.quads.push_back({{-h, -h, -h}, {0, 0, 2 * h}, {2 * h, 0, 0}, m});   // floor, normal +Y
+  s.quads.push_back({{-h, h, -h}, {2 * h, 0, 0}, {0, 0, 2 * h}, m});    // ceiling, normal -Y
+  s.quads.push_back({{-h, -h, -h}, {0, 2 * h, 0}, {0, 0, 2 * h}, m});   // x = -h, normal +X
+  s.quads.push_back({{h, -h, -h}, {0, 0, 2 * h}, {0, 2 * h, 0}, m});    // x = +h, normal -X
+  s.quads.push_back({{-h, -h, -h}, {2 * h, 0, 0}, {0, 2 * h, 0}, m});   // z = -h, normal +Z
+  s.quads.push_back({{-h, -h, h}, {0, 2 * h, 0}, {2 * h, 0, 0}, m});    // z = +h, normal -Z
+  s.settings.max_depth = 64;
+  s.settings.rr_depth = 0;
+  const auto e = estimate_radiance(s, {0.1, 0.2, 0.3}, normalize(Vec3{0.2, -1, 0.1}), 4000, SamplingMode::mis).value();
+  // Truncation at 64 bounces leaves 0.5^64 of the series: nothing measurable.
+  expect_within(e.mean.r, 0.5, e.standard_error.r, 4.0, "closed box");
+}
+
+Scene plane_scene(const SceneLight& light) {
+  Scene s;
+  s.quads.push_back(floor_quad(50.0, 0.0, add_material(s, "lambert", {{"kd", "0.6"}})));
+  s.lights.push_back(light);
+  s.settings.max_depth = 1;
+  return s;
+}
+
+TEST(PathTracer, PointLightOnLambertPlaneInBothConventions) {
+  // Game: a point light of colour c at distance r gives the shading equation L = kd c cos / r^2 (no pi).
+  // Radiometric: L = (kd / pi) I cos / r^2 with I = pi c.
+  const Rgb c = Rgb::gray(2.0);
+  const PointLight light{{1.0, 3.0, 0.0}, intensity_from_game(c)};
+  const Scene s = plane_scene(light);
+  const Vec3 p{0.0, 0.0, 0.0};
+  const Vec3 to_light = light.position - p;
+  const double r2 = dot(to_light, to_light);
+  const double cos_theta = to_light.y / std::sqrt(r2);
+  const double game = 0.6 * c.r * cos_theta / r2;
+  const double radiometric = 0.6 / pi * light.intensity.r * cos_theta / r2;
+  EXPECT_NEAR(game, radiometric, 1e-15);
+  // Looking straight down at p: deterministic (delta light, Lambert sampling does not matter at depth 1).
+  const auto e = estimate_radiance(s, {0.0, 2.0, 0.0}, {0.0, -1.0, 0.0}, 16).value();
+  EXPECT_NEAR(e.mean.r, game, 1e-9);
+}
+
+TEST(PathTracer, SphereLightOnLambertPlaneMatchesTheClosedForm) {
+  // L = (kd/pi) E with E = L_light * factor(theta, beta) (sphere_light.h), also partly below the horizon.
+  for (const Vec3 center : {Vec3{0.0, 3.0, 0.0}, Vec3{2.0, 1.0, 0.0}, Vec3{3.0, 0.3, 0.0}}) {
+    const SphereLight light{center, 0.8, Rgb::gray(5.0)};
+    const Scene s = plane_scene(light);
+    const Vec3 p{0.0, 0.0, 0.0};
+    const double expected = 0.6 / pi * sphere_light_irradiance(light, p, {0.0, 1.0, 0.0}).r;
+    for (auto mode : {SamplingMode::mis, SamplingMode::light, SamplingMode::brdf}) {
+      const auto e = estimate_radiance(s, {-0.5, 2.0, 0.0}, normalize(p - Vec3{-0.5, 2.0, 0.0}), 20000, mode).value();
+      expect_within(e.mean.r, expected, e.standard_error.r, 4.0, "sphere light at " + std::to_string(center.x));
+    }
+  }
+}
+
+TEST(PathTracer, DirectionalGameLightShowsItsColour) {
+  // The game unit's definition, through the renderer: colour 1 facing a white Lambert plane shows 1.
+  Scene s = plane_scene(DirectionalLight{{0.0, 1.0, 0.0}, irradiance_from_game(Rgb::gray(1.0))});
+  s.materials[0].params = {{"kd", "1"}};
+  const auto e = estimate_radiance(s, {0.0, 1.0, 1.0}, normalize(Vec3{0.0, -1.0, -1.0}), 4).value();
+  EXPECT_NEAR(e.mean.g, 1.0, 1e-12);
+}
+
+TEST(PathTracer, MisIsUnbiasedForEveryModel) {
+  // BRDF sampling only, light sampling only and MIS estimate the same direct lighting (sphere light and a
+  // uniform sky) for every model: the means agree within 4 sigma.
+  for (const auto& info : brdf_models()) {
+    Scene s;
+    s.quads.push_back(floor_quad(50.0, 0.0, add_material(s, info.name, {})));
+    s.lights.push_back(SphereLight{{1.0, 2.0, 0.5}, 0.7, Rgb::gray(3.0)});
+    s.environment.kind = Environment::Kind::uniform;
+    s.environment.uniform = Rgb::gray(0.2);
+    s.settings.max_depth = 1;
+    const Vec3 eye{-1.5, 1.5, 0.2};
+    const Vec3 dir = normalize(Vec3{0.1, 0.0, 0.0} - eye);
+    RadianceEstimate e[3];
+    const SamplingMode modes[3] = {SamplingMode::mis, SamplingMode::brdf, SamplingMode::light};
+    for (int i = 0; i < 3; ++i) e[i] = estimate_radiance(s, eye, dir, 40000, modes[i], 1, 7 + static_cast<std::uint64_t>(i)).value();
+    for (int i = 0; i < 3; ++i) {
+      for (int j = i + 1; j < 3; ++j) {
+        const double sigma = std::hypot(e[i].standard_error.g, e[j].standard_error.g);
+        expect_within(e[i].mean.g, e[j].mean.g, sigma, 4.0, info.name + " modes " + std::to_string(i) + "," + std::to_string(j));
+      }
+    }
+  }
+}
+
+TEST(PathTracer, SameImageWhateverTheThreadCount) {
+  Scene s;
+  s.camera.width = 48;
+  s.camera.height = 32;
+  s.camera.position = {0, 1, 4};
+  s.camera.look_at = {0, 0.5, 0};
+  s.environment.kind = Environment::Kind::uniform;
+  s.environment.uniform = Rgb{0.3, 0.4, 0.5};
+  s.quads.push_back(floor_quad(5.0, 0.0, add_material(s, "lambert", {{"kd", "0.5"}})));
+  s.spheres.push_back({{0, 0.7, 0}, 0.7, add_material(s, "cook-torrance", {})});
+  s.lights.push_back(SphereLight{{2, 3, 1}, 0.5, Rgb::gray(20.0)});
+  s.settings.spp = 8;
+  s.settings.max_depth = 4;
+  std::vector<Image> images;
+  for (int threads : {1, 2, 4}) {
+    RenderOptions o;
+    o.threads = threads;
+    images.push_back(render_scene(s, o).value().beauty);
+  }
+  EXPECT_EQ(images[0].data, images[1].data);
+  EXPECT_EQ(images[0].data, images[2].data);
+}
+
+}  // namespace
+}  // namespace shadelab

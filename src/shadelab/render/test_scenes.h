@@ -1,0 +1,23 @@
+// Scenes built in code for the renderer's tests.
+#pragma once
+
+#include "shadelab/scene/scene.h"
+
+namespace shadelab::testing {
+
+inline int add_material(Scene& s, const std::string& model, ParamAssignments params, Rgb emission = {}) {
+  Material m;
+  m.name = model + std::to_string(s.materials.size());
+  m.model = model;
+  m.params = std::move(params);
+  m.emission = emission;
+  s.materials.push_back(std::move(m));
+  return static_cast<int>(s.materials.size()) - 1;
+}
+
+// A horizontal square of side 2 * half at height y, facing +Y.
+inline QuadShape floor_quad(double half, double y, int material) {
+  return {{-half, y, half}, {2.0 * half, 0.0, 0.0}, {0.0, 0.0, -2.0 * half}, material};
+}
+
+}  // namespace shadelab::testing

@@ -1,0 +1,552 @@
+#include "shadelab/scene/mesh_io.h"
+
+#include <tiny_gltf.h>
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "shadelab/core/constants.h"
+
+namespace shadelab {
+
+namespace {
+
+std::string one_line(std::string text) {
+  // Library messages may hold several lines; the scene format promises one.
+  std::string out;
+  for (char c : text) {
+    if (c == '\r') continue;
+    out += c == '\n' ? std::string("; ") : std::string(1, c);
+  }
+  while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
+  return out;
+}
+
+Error mesh_error(const std::filesystem::path& path, const std::string& message) {
+  return make_error(path.string() + ": " + message);
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+Mat3 multiply(const Mat3& a, const Mat3& b) {
+  Mat3 r;
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t j = 0; j < 3; ++j) {
+      r.m[i][j] = a.m[i][0] * b.m[0][j] + a.m[i][1] * b.m[1][j] + a.m[i][2] * b.m[2][j];
+    }
+  }
+  return r;
+}
+
+double determinant(const Mat3& a) {
+  const auto& m = a.m;
+  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
+// (M^-1)^T = cofactor(M) / det(M): the matrix that maps normals (Cramer's rule).
+Mat3 inverse_transpose(const Mat3& a) {
+  const auto& m = a.m;
+  const double inv_det = 1.0 / determinant(a);
+  Mat3 c;
+  c.m = {{{(m[1][1] * m[2][2] - m[1][2] * m[2][1]) * inv_det, (m[1][2] * m[2][0] - m[1][0] * m[2][2]) * inv_det,
+           (m[1][0] * m[2][1] - m[1][1] * m[2][0]) * inv_det},
+          {(m[0][2] * m[2][1] - m[0][1] * m[2][2]) * inv_det, (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * inv_det,
+           (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * inv_det},
+          {(m[0][1] * m[1][2] - m[0][2] * m[1][1]) * inv_det, (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * inv_det,
+           (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * inv_det}}};
+  return c;
+}
+
+MeshTransform compose(const MeshTransform& outer, const MeshTransform& inner) {
+  return {multiply(outer.linear, inner.linear), outer.linear.apply(inner.translate) + outer.translate};
+}
+
+// Normalizes the normals; drops them all when one cannot be normalized (zero, NaN or infinite).
+void finish_normals(MeshShape& mesh) {
+  for (auto& n : mesh.normals) {
+    const double len = length(n);
+    if (!(len > 0.0) || !std::isfinite(len)) {
+      mesh.normals.clear();
+      return;
+    }
+    n = n / len;
+  }
+}
+
+Result<bool> check_mesh(const std::filesystem::path& path, const MeshShape& mesh) {
+  if (mesh.indices.empty()) return mesh_error(path, "the mesh has no triangles");
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    if (!is_finite(mesh.positions[i])) return mesh_error(path, "vertex " + std::to_string(i) + " is not finite");
+  }
+  for (std::size_t i = 0; i < mesh.uvs.size(); ++i) {
+    if (!std::isfinite(mesh.uvs[i].x) || !std::isfinite(mesh.uvs[i].y)) {
+      return mesh_error(path, "texture coordinate " + std::to_string(i) + " is not finite");
+    }
+  }
+  for (std::uint32_t index : mesh.indices) {
+    if (index >= mesh.positions.size()) {
+      return mesh_error(path, "index " + std::to_string(index) + " is out of range (" +
+                                  std::to_string(mesh.positions.size()) + " vertices)");
+    }
+  }
+  return true;
+}
+
+// ---- OBJ ----------------------------------------------------------------------------------------------
+
+struct CornerHash {
+  std::size_t operator()(const std::array<int, 3>& k) const {
+    std::uint64_t h = static_cast<std::uint32_t>(k[0]);
+    h = h * 0x9e3779b97f4a7c15ULL ^ static_cast<std::uint32_t>(k[1]);
+    h = h * 0x9e3779b97f4a7c15ULL ^ static_cast<std::uint32_t>(k[2]);
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
+};
+
+}  // namespace
+
+Result<MeshShape> load_obj(const std::filesystem::path& path) {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path.string(), config) || !reader.Valid()) {
+    const std::string why = one_line(reader.Error());
+    return mesh_error(path, "cannot read OBJ" + (why.empty() ? std::string() : ": " + why));
+  }
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  const std::size_t num_positions = attrib.vertices.size() / 3;
+  const std::size_t num_normals = attrib.normals.size() / 3;
+  const std::size_t num_uvs = attrib.texcoords.size() / 2;
+
+  // First pass: do all corners have normals / uvs?
+  bool has_normals = true;
+  bool has_uvs = true;
+  std::size_t corners = 0;
+  for (const auto& shape : reader.GetShapes()) {
+    for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      if (shape.mesh.num_face_vertices[f] != 3) {
+        return mesh_error(path, "face " + std::to_string(f) + " of '" + shape.name + "' has " +
+                                    std::to_string(shape.mesh.num_face_vertices[f]) + " corners after triangulation");
+      }
+    }
+    for (const auto& idx : shape.mesh.indices) {
+      has_normals = has_normals && idx.normal_index >= 0;
+      has_uvs = has_uvs && idx.texcoord_index >= 0;
+      ++corners;
+    }
+  }
+
+  MeshShape mesh;
+  mesh.source = path.string();
+  std::unordered_map<std::array<int, 3>, std::uint32_t, CornerHash> vertex_of;
+  mesh.indices.reserve(corners);
+  for (const auto& shape : reader.GetShapes()) {
+    for (const auto& idx : shape.mesh.indices) {
+      const std::array<int, 3> key{idx.vertex_index, has_normals ? idx.normal_index : -1,
+                                   has_uvs ? idx.texcoord_index : -1};
+      if (key[0] < 0 || static_cast<std::size_t>(key[0]) >= num_positions) {
+        return mesh_error(
+            path, "a face refers to vertex " + std::to_string(key[0] + 1) + " of " + std::to_string(num_positions));
+      }
+      if (has_normals && static_cast<std::size_t>(key[1]) >= num_normals) {
+        return mesh_error(
+            path, "a face refers to normal " + std::to_string(key[1] + 1) + " of " + std::to_string(num_normals));
+      }
+      if (has_uvs && static_cast<std::size_t>(key[2]) >= num_uvs) {
+        return mesh_error(path, "a face refers to texture coordinate " + std::to_string(key[2] + 1) + " of " +
+                                    std::to_string(num_uvs));
+      }
+      const auto [it, inserted] = vertex_of.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
+      if (inserted) {
+        const auto p = static_cast<std::size_t>(key[0]) * 3;
+        mesh.positions.push_back({static_cast<double>(attrib.vertices[p]), static_cast<double>(attrib.vertices[p + 1]),
+                                  static_cast<double>(attrib.vertices[p + 2])});
+        if (has_normals) {
+          const auto n = static_cast<std::size_t>(key[1]) * 3;
+          mesh.normals.push_back({static_cast<double>(attrib.normals[n]), static_cast<double>(attrib.normals[n + 1]),
+                                  static_cast<double>(attrib.normals[n + 2])});
+        }
+        if (has_uvs) {
+          const auto t = static_cast<std::size_t>(key[2]) * 2;
+          // OBJ's vt origin is the image's bottom left; shadelab's (and glTF's) is the top left.
+          mesh.uvs.push_back(
+              {static_cast<double>(attrib.texcoords[t]), 1.0 - static_cast<double>(attrib.texcoords[t + 1])});
+        }
+      }
+      mesh.indices.push_back(it->second);
+    }
+  }
+  finish_normals(mesh);
+  auto ok = check_mesh(path, mesh);
+  if (!ok) return ok.error();
+  return mesh;
+}
+
+// ---- glTF ---------------------------------------------------------------------------------------------
+
+namespace {
+
+// A validated accessor: `count` elements of `components` values each, `stride` bytes apart.
+struct AccessorView {
+  const unsigned char* data = nullptr;
+  std::size_t stride = 0;
+  std::size_t count = 0;
+  int component_type = 0;
+  int components = 0;
+  bool normalized = false;
+
+  double component(std::size_t element, int c) const {
+    const unsigned char* p = data + element * stride;
+    switch (component_type) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float f = 0.0f;
+        std::memcpy(&f, p + 4 * c, sizeof f);
+        return static_cast<double>(f);
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+        const double v = p[c];
+        return normalized ? v / 255.0 : v;  // glTF 2.0, 3.11: normalized ubyte c / 255
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        std::uint16_t s = 0;
+        std::memcpy(&s, p + 2 * c, sizeof s);
+        return normalized ? s / 65535.0 : static_cast<double>(s);  // glTF 2.0, 3.11: c / 65535
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        std::uint32_t u = 0;
+        std::memcpy(&u, p + 4 * c, sizeof u);
+        return static_cast<double>(u);
+      }
+      default:
+        return 0.0;
+    }
+  }
+};
+
+const char* type_name(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    default:
+      return "a matrix type";
+  }
+}
+
+std::string component_name(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return "byte";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return "unsigned byte";
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return "short";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return "unsigned short";
+    case TINYGLTF_COMPONENT_TYPE_INT:
+      return "int";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return "unsigned int";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return "float";
+    default:
+      return "component type " + std::to_string(type);
+  }
+}
+
+// Checks accessor `index` against the expected type and the allowed component types, and its bounds.
+Result<AccessorView> view_accessor(const tinygltf::Model& model, int index, const std::string& what, int type,
+                                   std::initializer_list<int> component_types, bool require_normalized_ints) {
+  if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size()) {
+    return make_error(what + ": accessor " + std::to_string(index) + " does not exist");
+  }
+  const tinygltf::Accessor& a = model.accessors[static_cast<std::size_t>(index)];
+  const std::string where = what + " (accessor " + std::to_string(index) + ")";
+  if (a.sparse.isSparse) return make_error(where + ": sparse accessors are not supported");
+  if (a.type != type) return make_error(where + ": expected " + type_name(type) + ", got " + type_name(a.type));
+  if (std::find(component_types.begin(), component_types.end(), a.componentType) == component_types.end()) {
+    return make_error(where + ": component type " + component_name(a.componentType) + " is not supported here");
+  }
+  if (require_normalized_ints && a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !a.normalized) {
+    return make_error(where + ": integer components must be normalized");
+  }
+  if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model.bufferViews.size()) {
+    return make_error(where + ": has no valid bufferView");
+  }
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
+  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size()) {
+    return make_error(where + ": bufferView " + std::to_string(a.bufferView) + " has no valid buffer");
+  }
+  const tinygltf::Buffer& buffer = model.buffers[static_cast<std::size_t>(view.buffer)];
+  const int component_size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
+  const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
+  const auto element_size = static_cast<std::size_t>(component_size) * static_cast<std::size_t>(components);
+  const std::size_t stride = view.byteStride != 0 ? view.byteStride : element_size;
+  if (stride < element_size) return make_error(where + ": byteStride is smaller than an element");
+  AccessorView out;
+  out.stride = stride;
+  out.count = a.count;
+  out.component_type = a.componentType;
+  out.components = components;
+  out.normalized = a.normalized;
+  if (a.count == 0) return out;
+  const std::size_t start = view.byteOffset + a.byteOffset;
+  const std::size_t end = start + stride * (a.count - 1) + element_size;
+  if (a.byteOffset + stride * (a.count - 1) + element_size > view.byteLength || end > buffer.data.size()) {
+    return make_error(where + ": its data runs past the end of its buffer");
+  }
+  out.data = buffer.data.data() + start;
+  return out;
+}
+
+// glTF 2.0, 5.25: a node's matrix (column-major) or T * R * S, with the rotation a unit quaternion (x, y, z, w).
+MeshTransform node_transform(const tinygltf::Node& node) {
+  MeshTransform t;
+  if (node.matrix.size() == 16) {
+    for (std::size_t r = 0; r < 3; ++r) {
+      for (std::size_t c = 0; c < 3; ++c) t.linear.m[r][c] = node.matrix[c * 4 + r];
+    }
+    t.translate = {node.matrix[12], node.matrix[13], node.matrix[14]};
+    return t;
+  }
+  Mat3 rotation;
+  if (node.rotation.size() == 4) {
+    double x = node.rotation[0], y = node.rotation[1], z = node.rotation[2], w = node.rotation[3];
+    const double len = std::sqrt(x * x + y * y + z * z + w * w);
+    if (len > 0.0) {
+      x /= len, y /= len, z /= len, w /= len;
+    }
+    // Rotation matrix of a unit quaternion (Shoemake, "Animating rotation with quaternion curves", 1985).
+    rotation.m = {{{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                   {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                   {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}}};
+  }
+  std::array<double, 3> scale{1.0, 1.0, 1.0};
+  if (node.scale.size() == 3) scale = {node.scale[0], node.scale[1], node.scale[2]};
+  for (std::size_t r = 0; r < 3; ++r) {
+    for (std::size_t c = 0; c < 3; ++c) t.linear.m[r][c] = rotation.m[r][c] * scale[c];
+  }
+  if (node.translation.size() == 3) t.translate = {node.translation[0], node.translation[1], node.translation[2]};
+  return t;
+}
+
+// Accumulates the primitives of the visited nodes into one mesh.
+struct GltfBuilder {
+  const tinygltf::Model& model;
+  MeshShape mesh;
+  bool all_normals = true;
+  bool all_uvs = true;
+
+  Result<bool> add_primitive(const tinygltf::Primitive& prim, const std::string& where, const MeshTransform& xf) {
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
+      return make_error(where + ": mode " + std::to_string(prim.mode) + " is not a triangle list (mode 4)");
+    }
+    const auto pos_it = prim.attributes.find("POSITION");
+    if (pos_it == prim.attributes.end()) return make_error(where + ": has no POSITION attribute");
+    auto positions = view_accessor(model, pos_it->second, where + " POSITION", TINYGLTF_TYPE_VEC3,
+                                   {TINYGLTF_COMPONENT_TYPE_FLOAT}, false);
+    if (!positions) return positions.error();
+    std::optional<AccessorView> normals;
+    if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
+      auto v = view_accessor(model, it->second, where + " NORMAL", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT},
+                             false);
+      if (!v) return v.error();
+      if (v->count != positions->count) return make_error(where + ": NORMAL and POSITION counts differ");
+      normals = *v;
+    }
+    std::optional<AccessorView> uvs;
+    if (const auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
+      auto v = view_accessor(model, it->second, where + " TEXCOORD_0", TINYGLTF_TYPE_VEC2,
+                             {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                              TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                             true);
+      if (!v) return v.error();
+      if (v->count != positions->count) return make_error(where + ": TEXCOORD_0 and POSITION counts differ");
+      uvs = *v;
+    }
+    all_normals = all_normals && normals.has_value();
+    all_uvs = all_uvs && uvs.has_value();
+
+    const std::size_t base = mesh.positions.size();
+    const std::size_t count = positions->count;
+    if (base + count > 0xffffffffULL) return make_error(where + ": too many vertices");
+    const Mat3 normal_matrix = inverse_transpose(xf.linear);
+    for (std::size_t i = 0; i < count; ++i) {
+      const Vec3 p{positions->component(i, 0), positions->component(i, 1), positions->component(i, 2)};
+      mesh.positions.push_back(xf.linear.apply(p) + xf.translate);
+      mesh.normals.push_back(
+          normals ? normal_matrix.apply({normals->component(i, 0), normals->component(i, 1), normals->component(i, 2)})
+                  : Vec3{});
+      mesh.uvs.push_back(uvs ? Vec2{uvs->component(i, 0), uvs->component(i, 1)} : Vec2{});
+    }
+
+    std::vector<std::uint32_t> local;
+    if (prim.indices >= 0) {
+      auto idx = view_accessor(model, prim.indices, where + " indices", TINYGLTF_TYPE_SCALAR,
+                               {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                               false);
+      if (!idx) return idx.error();
+      local.reserve(idx->count);
+      for (std::size_t i = 0; i < idx->count; ++i) {
+        const double v = idx->component(i, 0);
+        if (v >= static_cast<double>(count)) {
+          return make_error(where + ": index " + std::to_string(static_cast<std::uint64_t>(v)) + " is out of range (" +
+                            std::to_string(count) + " vertices)");
+        }
+        local.push_back(static_cast<std::uint32_t>(v));
+      }
+    } else {
+      for (std::size_t i = 0; i < count; ++i) local.push_back(static_cast<std::uint32_t>(i));
+    }
+    if (local.size() % 3 != 0) {
+      return make_error(where + ": " + std::to_string(local.size()) + " indices is not a whole number of triangles");
+    }
+    const bool mirror = determinant(xf.linear) < 0.0;
+    for (std::size_t t = 0; t < local.size(); t += 3) {
+      const auto b = static_cast<std::uint32_t>(base);
+      mesh.indices.push_back(b + local[t]);
+      // A mirroring transform turns counter-clockwise triangles clockwise; swap two corners back.
+      mesh.indices.push_back(b + local[mirror ? t + 2 : t + 1]);
+      mesh.indices.push_back(b + local[mirror ? t + 1 : t + 2]);
+    }
+    return true;
+  }
+
+  Result<bool> visit(int node_index, const MeshTransform& parent, std::size_t depth) {
+    if (node_index < 0 || static_cast<std::size_t>(node_index) >= model.nodes.size()) {
+      return make_error("node " + std::to_string(node_index) + " does not exist");
+    }
+    if (depth > model.nodes.size()) return make_error("the node hierarchy has a cycle");
+    const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(node_index)];
+    const MeshTransform xf = compose(parent, node_transform(node));
+    if (node.mesh >= 0) {
+      if (static_cast<std::size_t>(node.mesh) >= model.meshes.size()) {
+        return make_error("node " + std::to_string(node_index) + " refers to mesh " + std::to_string(node.mesh) +
+                          ", which does not exist");
+      }
+      if (std::abs(determinant(xf.linear)) == 0.0 || !std::isfinite(determinant(xf.linear))) {
+        return make_error("node " + std::to_string(node_index) + " has a singular transform");
+      }
+      const tinygltf::Mesh& m = model.meshes[static_cast<std::size_t>(node.mesh)];
+      for (std::size_t p = 0; p < m.primitives.size(); ++p) {
+        const std::string where = "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p);
+        auto r = add_primitive(m.primitives[p], where, xf);
+        if (!r) return r;
+      }
+    }
+    for (int child : node.children) {
+      auto r = visit(child, xf, depth + 1);
+      if (!r) return r;
+    }
+    return true;
+  }
+};
+
+// glTF images are not needed for geometry: skip decoding them.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;
+}
+
+}  // namespace
+
+Result<MeshShape> load_gltf(const std::filesystem::path& path) {
+  tinygltf::Model model;
+  std::string err;
+  std::string warn;
+  bool ok = false;
+  try {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(&skip_image, nullptr);
+    ok = lower_extension(path) == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
+                                         : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
+  } catch (const std::exception& e) {
+    return mesh_error(path, std::string("cannot read glTF: ") + one_line(e.what()));
+  }
+  if (!ok) return mesh_error(path, "cannot read glTF: " + one_line(err.empty() ? warn : err));
+  if (!model.extensionsRequired.empty()) {
+    return mesh_error(path, "required extension " + model.extensionsRequired.front() + " is not supported");
+  }
+
+  GltfBuilder builder{model, {}, true, true};
+  builder.mesh.source = path.string();
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (static_cast<std::size_t>(scene) >= model.scenes.size()) {
+      return mesh_error(path, "default scene " + std::to_string(scene) + " does not exist");
+    }
+    roots = model.scenes[static_cast<std::size_t>(scene)].nodes;
+  } else {
+    // No scenes: every node that is nobody's child is a root.
+    std::vector<bool> is_child(model.nodes.size(), false);
+    for (const auto& node : model.nodes) {
+      for (int c : node.children) {
+        if (c >= 0 && static_cast<std::size_t>(c) < is_child.size()) is_child[static_cast<std::size_t>(c)] = true;
+      }
+    }
+    for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+      if (!is_child[i]) roots.push_back(static_cast<int>(i));
+    }
+  }
+  for (int root : roots) {
+    auto r = builder.visit(root, MeshTransform{}, 0);
+    if (!r) return mesh_error(path, r.error().message);
+  }
+  MeshShape mesh = std::move(builder.mesh);
+  if (!builder.all_normals) mesh.normals.clear();
+  if (!builder.all_uvs) mesh.uvs.clear();
+  finish_normals(mesh);
+  auto checked = check_mesh(path, mesh);
+  if (!checked) return checked.error();
+  return mesh;
+}
+
+Result<MeshShape> load_mesh(const std::filesystem::path& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".obj") return load_obj(path);
+  if (ext == ".gltf" || ext == ".glb") return load_gltf(path);
+  return mesh_error(path, "unknown mesh format '" + path.extension().string() + "' (expected .obj, .gltf or .glb)");
+}
+
+MeshTransform make_mesh_transform(const Vec3& translate, const Vec3& rotation_axis, double rotation_deg,
+                                  const Vec3& scale) {
+  Mat3 s;
+  s.m = {{{scale.x, 0.0, 0.0}, {0.0, scale.y, 0.0}, {0.0, 0.0, scale.z}}};
+  const Mat3 r = Mat3::rotation(rotation_axis, deg_to_rad(rotation_deg));
+  return {multiply(r, s), translate};
+}
+
+void transform_mesh(MeshShape& mesh, const MeshTransform& transform) {
+  for (auto& p : mesh.positions) p = transform.linear.apply(p) + transform.translate;
+  const Mat3 normal_matrix = inverse_transpose(transform.linear);
+  for (auto& n : mesh.normals) n = normalize(normal_matrix.apply(n));
+  if (determinant(transform.linear) < 0.0) {
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+  }
+}
+
+}  // namespace shadelab

@@ -1,0 +1,50 @@
+// shadelab mesh files: Wavefront OBJ (tinyobjloader) and glTF 2.0, .gltf or .glb (tinygltf), read into a
+// MeshShape (scene.h) of indexed triangles.
+//
+// Contract:
+// - load_mesh picks the reader by extension, case-insensitive: .obj, .gltf, .glb; any other is an error.
+// - OBJ: every object and group of the file in one mesh; polygons are triangulated as fans; materials
+//   (.mtl) are ignored. A vertex is a distinct (position, normal, uv) index triple of the file. Normals and
+//   uvs are kept only when every face corner has one; uvs are flipped to the glTF convention (v -> 1 - v,
+//   OBJ's vt has its origin at the bottom left of the image, shadelab's texture uv at the top left).
+// - glTF: every primitive of every mesh instanced by the nodes of the default scene (the first scene when
+//   none is marked default; every root node when the file has no scenes), with the node transforms
+//   (matrix, or translation x rotation x scale, parents first) applied. Primitives must be triangle lists
+//   (mode 4); attributes POSITION (float vec3, required), NORMAL (float vec3) and TEXCOORD_0 (float, or
+//   normalized unsigned byte / short, vec2); indices unsigned byte, short or int, or none (sequential).
+//   Sparse accessors and Draco compression are rejected. Images are not decoded. glTF uvs are already top-left.
+//   Normals and uvs are kept only when every primitive has them. A node whose transform mirrors
+//   (negative determinant) has its triangles' winding reversed, as the glTF specification requires.
+// - Normals are normalized; if any is zero or not finite, all normals are dropped (the renderer then uses
+//   the geometric normals). Positions must be finite and indices in range; a mesh without triangles is an
+//   error. Every error is one line that starts with the file's path.
+// - MeshShape::source is the path as given; material is 0.
+#pragma once
+
+#include <filesystem>
+
+#include "shadelab/core/error.h"
+#include "shadelab/core/mat3.h"
+#include "shadelab/core/vec.h"
+#include "shadelab/scene/scene.h"
+
+namespace shadelab {
+
+Result<MeshShape> load_mesh(const std::filesystem::path& path);
+Result<MeshShape> load_obj(const std::filesystem::path& path);
+Result<MeshShape> load_gltf(const std::filesystem::path& path);  // .gltf (JSON) or .glb (binary)
+
+// An affine map p -> linear p + translate. Normals go through the inverse transpose of `linear` and are
+// renormalized; a mirroring map (det < 0) reverses the triangles' winding. `linear` must be invertible.
+struct MeshTransform {
+  Mat3 linear;
+  Vec3 translate;
+};
+
+// The scene format's transform: scale, then rotate (angle in degrees about a unit axis), then translate.
+MeshTransform make_mesh_transform(const Vec3& translate, const Vec3& rotation_axis, double rotation_deg,
+                                  const Vec3& scale);
+
+void transform_mesh(MeshShape& mesh, const MeshTransform& transform);
+
+}  // namespace shadelab

@@ -1,0 +1,951 @@
+// The JSON scene format (docs/scene-format.md). Inside this file a parse error is thrown as a Failure (the
+// JSON pointer and the message) and caught once, in parse_scene, which returns it as an Error: the checks
+// read as straight-line code, and nothing crosses the library boundary but a Result.
+#include "shadelab/scene/scene_json.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "shadelab/core/constants.h"
+#include "shadelab/image/image_io.h"
+#include "shadelab/image/srgb.h"
+#include "shadelab/light/units.h"
+#include "shadelab/scene/mesh_io.h"
+#include "shadelab/scene/procedural.h"
+
+namespace shadelab {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr std::array<std::string_view, 10> top_level_keys = {
+    "$schema", "description", "units", "camera", "render", "textures", "materials", "shapes", "lights", "environment"};
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr int max_image_side = 16384;   // camera width and height
+constexpr int max_texture_side = 8192;  // procedural textures
+
+struct Failure {
+  std::string pointer;
+  std::string message;
+};
+
+// RFC 6901: in a reference token "~" is written "~0" and "/" is written "~1".
+std::string pointer_token(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') {
+      out += "~0";
+    } else if (c == '/') {
+      out += "~1";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string format_number(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// The shortest text that reads back as exactly v (for handing numbers to parse_params).
+std::string exact_number(double v) {
+  std::array<char, 64> buffer{};
+  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
+  return ec == std::errc() ? std::string(buffer.data(), end) : format_number(v);
+}
+
+// A value as a message shows it: JSON text, shortened; non-finite numbers by name.
+std::string describe(const json& v) {
+  if (v.is_number_float()) {
+    const double d = v.get<double>();
+    if (std::isnan(d)) return "NaN";
+    if (std::isinf(d)) return d > 0 ? "inf" : "-inf";
+  }
+  std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
+  if (s.size() > 60) s = s.substr(0, 57) + "...";
+  return s;
+}
+
+std::string join(const std::vector<std::string>& words, std::string_view separator = ", ") {
+  std::string out;
+  for (const auto& w : words) out += (out.empty() ? "" : std::string(separator)) + w;
+  return out;
+}
+
+// A value in the document and its JSON pointer.
+class Node {
+ public:
+  Node(const json& value, std::string pointer) : m_value(&value), m_pointer(std::move(pointer)) {}
+
+  const json& value() const { return *m_value; }
+  const std::string& pointer() const { return m_pointer; }
+  std::string child_pointer(std::string_view key) const { return m_pointer + "/" + pointer_token(key); }
+  Node element(std::size_t i) const { return {(*m_value)[i], m_pointer + "/" + std::to_string(i)}; }
+
+  [[noreturn]] void fail(const std::string& message) const { throw Failure{m_pointer, message}; }
+
+ private:
+  const json* m_value;
+  std::string m_pointer;
+};
+
+// An object whose keys have been checked against the allowed ones.
+class Object {
+ public:
+  Object(const Node& node, const std::vector<std::string_view>& allowed, std::string_view what) : m_node(node) {
+    if (!node.value().is_object())
+      node.fail("expected " + std::string(what) + " (a JSON object), got " + describe(node.value()));
+    for (const auto& [key, value] : node.value().items()) {
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        std::vector<std::string> names(allowed.begin(), allowed.end());
+        throw Failure{node.child_pointer(key),
+                      "unknown key '" + key + "' (keys of " + std::string(what) + ": " + join(names) + ")"};
+      }
+    }
+  }
+
+  const Node& node() const { return m_node; }
+  bool has(std::string_view key) const { return m_node.value().contains(key); }
+  std::optional<Node> get(std::string_view key) const {
+    const auto it = m_node.value().find(key);
+    if (it == m_node.value().end()) return std::nullopt;
+    return Node(*it, m_node.child_pointer(key));
+  }
+  Node require(std::string_view key) const {
+    auto n = get(key);
+    if (!n) throw Failure{m_node.child_pointer(key), "required key is missing"};
+    return *n;
+  }
+
+ private:
+  Node m_node;
+};
+
+// ---- scalar values ------------------------------------------------------------------------------------
+
+double number(const Node& n) {
+  if (!n.value().is_number()) n.fail("expected a number, got " + describe(n.value()));
+  const double v = n.value().get<double>();
+  if (!std::isfinite(v)) n.fail("expected a finite number, got " + describe(n.value()));
+  return v;
+}
+
+// A number in a range; lo_open / hi_open exclude the bound; hi = inf means no upper bound.
+double number_in(const Node& n, double lo, bool lo_open, double hi = inf, bool hi_open = false) {
+  const double v = number(n);
+  const bool ok = (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  if (!ok) {
+    const std::string condition = hi == inf ? std::string(lo_open ? "> " : ">= ") + format_number(lo)
+                                            : std::string("in ") + (lo_open ? "(" : "[") + format_number(lo) + ", " +
+                                                  format_number(hi) + (hi_open ? ")" : "]");
+    n.fail("expected a number " + condition + ", got " + describe(n.value()));
+  }
+  return v;
+}
+
+double positive(const Node& n) { return number_in(n, 0.0, true); }
+double non_negative(const Node& n) { return number_in(n, 0.0, false); }
+
+// An integer in [lo, hi]; 640.0 counts as an integer, 2.5 does not.
+long long integer_in(const Node& n, long long lo, long long hi) {
+  const std::string condition = hi == std::numeric_limits<long long>::max()
+                                    ? ">= " + std::to_string(lo)
+                                    : "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (!n.value().is_number()) n.fail("expected an integer, got " + describe(n.value()));
+  if (n.value().is_number_unsigned()) {
+    const auto u = n.value().get<std::uint64_t>();
+    if (u > static_cast<std::uint64_t>(hi) || (lo > 0 && u < static_cast<std::uint64_t>(lo)))
+      n.fail("expected an integer " + condition + ", got " + describe(n.value()));
+    return static_cast<long long>(u);
+  }
+  if (n.value().is_number_integer()) {
+    const auto i = n.value().get<std::int64_t>();
+    if (i < lo || i > hi) n.fail("expected an integer " + condition + ", got " + describe(n.value()));
+    return i;
+  }
+  const double d = n.value().get<double>();
+  if (!std::isfinite(d) || d != std::floor(d) || d < static_cast<double>(lo) || d > static_cast<double>(hi) ||
+      std::abs(d) > 0x1.0p53) {
+    n.fail("expected an integer " + condition + ", got " + describe(n.value()));
+  }
+  return static_cast<long long>(d);
+}
+
+int int_in(const Node& n, int lo, int hi) { return static_cast<int>(integer_in(n, lo, hi)); }
+
+std::uint64_t seed_value(const Node& n) {
+  if (n.value().is_number_unsigned()) return n.value().get<std::uint64_t>();
+  return static_cast<std::uint64_t>(integer_in(n, 0, std::numeric_limits<long long>::max()));
+}
+
+std::string string_value(const Node& n) {
+  if (!n.value().is_string()) n.fail("expected a string, got " + describe(n.value()));
+  return n.value().get<std::string>();
+}
+
+std::string nonempty_string(const Node& n) {
+  std::string s = string_value(n);
+  if (s.empty()) n.fail("expected a non-empty string, got \"\"");
+  return s;
+}
+
+bool boolean(const Node& n) {
+  if (!n.value().is_boolean()) n.fail("expected true or false, got " + describe(n.value()));
+  return n.value().get<bool>();
+}
+
+std::string word(const Node& n, const std::vector<std::string_view>& choices) {
+  std::vector<std::string> quoted;
+  for (auto c : choices) quoted.push_back("\"" + std::string(c) + "\"");
+  const std::string expected = "expected one of " + join(quoted, ", ");
+  if (!n.value().is_string()) n.fail(expected + ", got " + describe(n.value()));
+  const std::string s = n.value().get<std::string>();
+  if (std::find(choices.begin(), choices.end(), s) == choices.end()) n.fail(expected + ", got " + describe(n.value()));
+  return s;
+}
+
+// ---- vectors and colours ------------------------------------------------------------------------------
+
+Vec3 vec3(const Node& n) {
+  if (!n.value().is_array() || n.value().size() != 3) n.fail("expected [x, y, z], got " + describe(n.value()));
+  return {number(n.element(0)), number(n.element(1)), number(n.element(2))};
+}
+
+Vec3 nonzero_vec3(const Node& n) {
+  const Vec3 v = vec3(n);
+  if (v.x == 0.0 && v.y == 0.0 && v.z == 0.0) n.fail("expected a non-zero vector, got " + describe(n.value()));
+  if (!std::isfinite(length(v))) n.fail("the vector " + describe(n.value()) + " is too long to normalize");
+  return v;
+}
+
+Vec3 direction(const Node& n) { return normalize(nonzero_vec3(n)); }
+
+// A colour: a number >= 0 (grey) or [r, g, b], each >= 0.
+Rgb colour(const Node& n) {
+  if (n.value().is_number()) return Rgb::gray(non_negative(n));
+  if (!n.value().is_array() || n.value().size() != 3) {
+    n.fail("expected a colour (a number or [r, g, b]), got " + describe(n.value()));
+  }
+  return {non_negative(n.element(0)), non_negative(n.element(1)), non_negative(n.element(2))};
+}
+
+// ---- units --------------------------------------------------------------------------------------------
+
+enum class Units { game, radiometric, photometric };
+
+// The named unit (light/units.h) in which a scene of these units gives each quantity.
+std::string_view unit_name(Units units, LightQuantity quantity) {
+  switch (quantity) {
+    case LightQuantity::irradiance:
+      return units == Units::game ? "game" : units == Units::radiometric ? "W/m2" : "lux";
+    case LightQuantity::intensity:
+      return units == Units::game ? "game-point" : units == Units::radiometric ? "W/sr" : "cd";
+    case LightQuantity::radiance:
+      break;
+  }
+  return units == Units::game ? "game-radiance" : units == Units::radiometric ? "W/m2/sr" : "nit";
+}
+
+std::string_view radiometric_unit(LightQuantity quantity) {
+  switch (quantity) {
+    case LightQuantity::irradiance:
+      return "W/m2";
+    case LightQuantity::intensity:
+      return "W/sr";
+    case LightQuantity::radiance:
+      break;
+  }
+  return "W/m2/sr";
+}
+
+Rgb convert(const Rgb& value, std::string_view from, std::string_view to, double cos_outer = -1.0) {
+  auto r = convert_light(value, from, to, cos_outer);
+  // The unit names are this file's constants and the cone is checked, so a failure is a programming error.
+  if (!r) throw std::logic_error("scene_json: " + r.error().message);
+  return *r;
+}
+
+// An RGB value per channel in the scene's unit of `quantity` -> radiometric (game: E = pi c, I = pi c;
+// photometric: each channel / 683, i.e. the vector's luminance is the photometric value).
+Rgb radiometric(const Rgb& value, Units units, LightQuantity quantity) {
+  return convert(value, unit_name(units, quantity), radiometric_unit(quantity));
+}
+
+// A colour times a value: in game and radiometric units the product; in photometric units the colour is a
+// chromaticity scaled so that its photometric value (683 x luminance) is `value` (light/units.h).
+Rgb radiometric(const Rgb& colour_value, double value, Units units, LightQuantity quantity) {
+  if (units == Units::photometric) return radiometric_from_photometric(colour_value, value);
+  return radiometric(colour_value * value, units, quantity);
+}
+
+// ---- the parser ---------------------------------------------------------------------------------------
+
+class Parser {
+ public:
+  Parser(const std::filesystem::path& base_dir, Scene& scene) : m_base_dir(base_dir), m_scene(scene) {}
+
+  void parse(const json& document) {
+    const Object top(Node(document, ""), {top_level_keys.begin(), top_level_keys.end()}, "a scene");
+    if (auto n = top.get("$schema")) string_value(*n);
+    if (auto n = top.get("description")) string_value(*n);
+    if (auto n = top.get("units")) {
+      const std::string u = word(*n, {"game", "radiometric", "photometric"});
+      m_units = u == "game" ? Units::game : u == "radiometric" ? Units::radiometric : Units::photometric;
+    }
+    if (auto n = top.get("camera")) parse_camera(*n);
+    if (auto n = top.get("render")) parse_render(*n);
+    if (auto n = top.get("textures")) parse_textures(*n);
+    if (auto n = top.get("materials")) parse_materials(*n);
+    if (auto n = top.get("shapes")) parse_shapes(*n);
+    if (auto n = top.get("lights")) parse_lights(*n);
+    if (auto n = top.get("environment")) parse_environment(*n);
+  }
+
+ private:
+  // A file named by node n, relative to the scene's folder unless absolute; it must exist.
+  std::filesystem::path file(const Node& n) const {
+    const std::filesystem::path given(nonempty_string(n));
+    const std::filesystem::path p = (given.is_absolute() ? given : m_base_dir / given).lexically_normal();
+    std::error_code ec;
+    if (!std::filesystem::exists(p, ec)) n.fail("file not found: '" + p.string() + "'");
+    if (!std::filesystem::is_regular_file(p, ec)) n.fail("not a regular file: '" + p.string() + "'");
+    return p;
+  }
+
+  void parse_camera(const Node& node) {
+    const Object o(node, {"position", "look_at", "up", "fov", "width", "height"}, "a camera");
+    Camera& c = m_scene.camera;
+    if (auto n = o.get("position")) c.position = vec3(*n);
+    if (auto n = o.get("look_at")) c.look_at = vec3(*n);
+    if (auto n = o.get("up")) c.up = direction(*n);
+    if (auto n = o.get("fov")) c.vfov_deg = number_in(*n, 0.0, true, 180.0, true);
+    if (auto n = o.get("width")) c.width = int_in(*n, 1, max_image_side);
+    if (auto n = o.get("height")) c.height = int_in(*n, 1, max_image_side);
+    const Vec3 view = c.look_at - c.position;
+    if (length(view) == 0.0) {
+      throw Failure{o.node().child_pointer(o.has("look_at") ? "look_at" : "position"),
+                    "look_at equals position: the view direction is undefined"};
+    }
+    if (length(cross(normalize(view), c.up)) < 1e-9) {
+      throw Failure{o.node().child_pointer("up"), "up is parallel to the view direction (look_at - position)"};
+    }
+  }
+
+  void parse_render(const Node& node) {
+    const Object o(node, {"spp", "max_depth", "seed", "threads", "rr_depth"}, "render settings");
+    RenderSettings& s = m_scene.settings;
+    if (auto n = o.get("spp")) s.spp = int_in(*n, 1, 1'000'000);
+    if (auto n = o.get("max_depth")) s.max_depth = int_in(*n, 1, 1000);
+    if (auto n = o.get("seed")) s.seed = seed_value(*n);
+    if (auto n = o.get("threads")) s.threads = int_in(*n, 0, 4096);
+    if (auto n = o.get("rr_depth")) s.rr_depth = int_in(*n, 0, 1000);
+  }
+
+  // ---- textures ----
+
+  void parse_textures(const Node& node) {
+    if (!node.value().is_object())
+      node.fail("expected textures by name (a JSON object), got " + describe(node.value()));
+    for (const auto& [name, value] : node.value().items()) {
+      const Node n(value, node.child_pointer(name));
+      m_texture_index[name] = static_cast<int>(m_scene.textures.size());
+      m_scene.textures.push_back(parse_texture(n, name));
+    }
+  }
+
+  Texture parse_texture(const Node& node, const std::string& name) {
+    Texture t;
+    t.name = name;
+    if (!node.value().is_object()) node.fail("expected a texture (a JSON object), got " + describe(node.value()));
+    const bool has_file = node.value().contains("file");
+    const bool has_procedural = node.value().contains("procedural");
+    if (has_file && has_procedural)
+      throw Failure{node.child_pointer("procedural"), "give 'file' or 'procedural', not both"};
+    if (!has_file && !has_procedural) node.fail("a texture needs 'file' or 'procedural'");
+    if (has_file) {
+      const Object o(node, {"file", "data"}, "a file texture");
+      const std::filesystem::path path = file(o.require("file"));
+      t.data = o.has("data") && boolean(*o.get("data"));
+      t.source = path.string();
+      ReadInfo info;
+      auto image = read_image(path, &info);
+      if (!image) throw Failure{o.node().child_pointer("file"), image.error().message};
+      t.image = std::move(*image);
+      if (t.data && info.format == "png") {
+        // read_image decoded the PNG as sRGB colour; a data texture holds the stored code / max code.
+        // linear_to_srgb inverts the decode; rounding to the nearest code makes the inversion exact.
+        const double max_code = info.sample_type == "uint16" ? 65535.0 : 255.0;
+        for (float& v : t.image.data) {
+          v = static_cast<float>(std::round(linear_to_srgb(static_cast<double>(v)) * max_code) / max_code);
+        }
+      }
+      return t;
+    }
+    const std::string kind = word(Node(node.value().at("procedural"), node.child_pointer("procedural")),
+                                  {"asphalt-diffuse", "asphalt-gloss", "checker"});
+    const int default_size = kind == "checker" ? 256 : 512;
+    std::vector<std::string_view> keys = {"procedural", "size"};
+    if (kind == "asphalt-diffuse") keys.insert(keys.end(), {"seed", "albedo"});
+    if (kind == "asphalt-gloss") keys.insert(keys.end(), {"seed", "wet_fraction"});
+    if (kind == "checker") keys.insert(keys.end(), {"squares", "color_a", "color_b", "data"});
+    const Object o(node, keys, "an " + kind + " texture");
+    const int size = o.has("size") ? int_in(*o.get("size"), 1, max_texture_side) : default_size;
+    const std::uint64_t seed = o.has("seed") ? seed_value(*o.get("seed")) : 1;
+    if (kind == "asphalt-diffuse") {
+      AsphaltDiffuseOptions opt{size, seed, 0.08};
+      if (auto n = o.get("albedo")) opt.albedo = number_in(*n, 0.0, false, 1.0, false);
+      t.image = asphalt_diffuse(opt);
+      t.data = false;
+      t.source = "procedural asphalt-diffuse (size " + std::to_string(size) + ", seed " + std::to_string(seed) + ")";
+    } else if (kind == "asphalt-gloss") {
+      AsphaltGlossOptions opt{size, seed, 0.3};
+      if (auto n = o.get("wet_fraction")) opt.wet_fraction = number_in(*n, 0.0, false, 1.0, false);
+      t.image = asphalt_gloss(opt);
+      t.data = true;
+      t.source = "procedural asphalt-gloss (size " + std::to_string(size) + ", seed " + std::to_string(seed) + ")";
+    } else {
+      CheckerOptions opt;
+      opt.size = size;
+      if (auto n = o.get("squares")) opt.squares = int_in(*n, 1, size);
+      if (auto n = o.get("color_a")) opt.colour_a = colour(*n);
+      if (auto n = o.get("color_b")) opt.colour_b = colour(*n);
+      t.data = o.has("data") && boolean(*o.get("data"));
+      t.image = checker(opt);
+      t.source = "procedural checker (size " + std::to_string(size) + ")";
+    }
+    return t;
+  }
+
+  int texture_ref(const Node& n) const {
+    const std::string name = nonempty_string(n);
+    const auto it = m_texture_index.find(name);
+    if (it == m_texture_index.end()) {
+      std::vector<std::string> names;
+      for (const auto& [k, v] : m_texture_index) names.push_back(k);
+      n.fail("unknown texture '" + name + "' (textures: " + (names.empty() ? std::string("none") : join(names)) + ")");
+    }
+    return it->second;
+  }
+
+  // ---- materials ----
+
+  void parse_materials(const Node& node) {
+    if (!node.value().is_object())
+      node.fail("expected materials by name (a JSON object), got " + describe(node.value()));
+    for (const auto& [name, value] : node.value().items()) {
+      m_material_index[name] = static_cast<int>(m_scene.materials.size());
+      m_scene.materials.push_back(parse_material(Node(value, node.child_pointer(name)), name));
+    }
+  }
+
+  // A parameter's value as parse_params reads it: 0.5 -> "0.5", [r, g, b] -> "r,g,b", "word" -> word,
+  // [[Cx, Cy, Cz, n], ...] -> "Cx,Cy,Cz,n;..." (lobes).
+  static std::string param_text(const Node& n) {
+    const json& v = n.value();
+    if (v.is_number()) return exact_number(number(n));
+    if (v.is_string()) return v.get<std::string>();
+    if (v.is_array() && !v.empty()) {
+      std::string out;
+      const bool groups = v[0].is_array();
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const Node e = n.element(i);
+        if (groups) {
+          if (!e.value().is_array() || e.value().empty())
+            e.fail("expected an array of numbers, like element 0, got " + describe(e.value()));
+          std::string group;
+          for (std::size_t j = 0; j < e.value().size(); ++j)
+            group += (j ? "," : "") + exact_number(number(e.element(j)));
+          out += (i ? ";" : "") + group;
+        } else {
+          out += (i ? "," : "") + exact_number(number(e));
+        }
+      }
+      return out;
+    }
+    n.fail("expected a number, [r, g, b], a word or lobes, got " + describe(v));
+  }
+
+  Material parse_material(const Node& node, const std::string& name) {
+    const Object o(node, {"model", "params", "textures", "gloss_range", "uv_scale", "emission"}, "a material");
+    Material m;
+    m.name = name;
+    if (auto n = o.get("emission")) m.emission = radiometric(colour(*n), m_units, LightQuantity::radiance);
+    if (!o.has("model")) {
+      if (!o.has("emission")) o.node().fail("a material needs a 'model' (a BRDF), an 'emission', or both");
+      for (const char* key : {"params", "textures"}) {
+        if (o.has(key)) throw Failure{o.node().child_pointer(key), std::string("'") + key + "' needs a 'model'"};
+      }
+      // Purely emissive: model "" and a black Lambert BRDF, so Material::brdf is never null.
+      m.brdf = std::shared_ptr<const Brdf>(make_brdf("lambert", {{"kd", "0"}}).value());
+    } else {
+      const Node model_node = *o.get("model");
+      m.model = nonempty_string(model_node);
+      const ModelInfo* info = find_brdf_model(m.model);
+      if (info == nullptr) model_node.fail(make_brdf(m.model).error().message);
+      if (auto params = o.get("params")) {
+        if (!params->value().is_object())
+          params->fail("expected parameters by name (a JSON object), got " + describe(params->value()));
+        for (const auto& [key, value] : params->value().items()) {
+          const Node p(value, params->child_pointer(key));
+          std::pair<std::string, std::string> assignment{key, param_text(p)};
+          // Validate each parameter alone first, so the error points at it.
+          auto one = parse_params(info->name, info->params, {assignment});
+          if (!one) p.fail(one.error().message);
+          m.params.push_back(std::move(assignment));
+        }
+      }
+      auto brdf = make_brdf(m.model, m.params);
+      if (!brdf) {
+        throw Failure{o.has("params") ? o.node().child_pointer("params") : o.node().pointer(), brdf.error().message};
+      }
+      m.brdf = std::shared_ptr<const Brdf>(std::move(brdf).value());
+      if (auto n = o.get("textures")) parse_material_textures(*n, *info, m);
+    }
+    if (auto n = o.get("gloss_range")) {
+      if (!n->value().is_array() || n->value().size() != 2)
+        n->fail("expected [n_black, n_white], got " + describe(n->value()));
+      const GlossEncoding encoding{positive(n->element(0)), positive(n->element(1))};
+      auto valid = encoding.validated();
+      if (!valid) n->fail(valid.error().message);
+      m.gloss_encoding = *valid;
+    }
+    if (auto n = o.get("uv_scale")) {
+      if (n->value().is_number()) {
+        const double s = positive(*n);
+        m.uv_scale = {s, s};
+      } else if (n->value().is_array() && n->value().size() == 2) {
+        m.uv_scale = {positive(n->element(0)), positive(n->element(1))};
+      } else {
+        n->fail("expected a number or [su, sv], got " + describe(n->value()));
+      }
+    }
+    return m;
+  }
+
+  static bool has_param(const ModelInfo& info, std::string_view name) {
+    return std::any_of(info.params.begin(), info.params.end(), [&](const ParamSpec& p) { return p.name == name; });
+  }
+
+  void parse_material_textures(const Node& node, const ModelInfo& info, Material& m) const {
+    const Object o(node, {"kd", "ks", "gloss", "normal"}, "material textures");
+    auto slot = [&](std::string_view key, bool data, const char* what) -> int {
+      const Node n = *o.get(key);
+      const int index = texture_ref(n);
+      const Texture& t = m_scene.textures[static_cast<std::size_t>(index)];
+      if (t.data != data) {
+        n.fail("texture '" + t.name + "' is a " + (t.data ? "data" : "colour") + " texture; " + what + " needs a " +
+               (data ? "data texture (\"data\": true)" : "colour texture (\"data\": false)"));
+      }
+      return index;
+    };
+    if (o.has("kd")) {
+      if (!has_param(info, "kd"))
+        throw Failure{o.node().child_pointer("kd"), "brdf " + info.name + " has no parameter 'kd'"};
+      m.kd_texture = slot("kd", false, "a diffuse colour map");
+    }
+    if (o.has("ks")) {
+      if (!has_param(info, "ks"))
+        throw Failure{o.node().child_pointer("ks"), "brdf " + info.name + " has no parameter 'ks'"};
+      m.ks_texture = slot("ks", true, "a specular map");
+    }
+    if (o.has("gloss")) {
+      if (!has_param(info, "n")) {
+        throw Failure{o.node().child_pointer("gloss"),
+                      "brdf " + info.name + " has no exponent 'n' for a gloss map to drive"};
+      }
+      for (const auto& [key, value] : m.params) {
+        if (key == "m") {
+          throw Failure{o.node().child_pointer("gloss"),
+                        "brdf " + info.name + ": a gloss map sets the exponent 'n'; remove parameter 'm'"};
+        }
+      }
+      m.gloss_texture = slot("gloss", true, "a gloss map");
+    }
+    if (o.has("normal")) m.normal_texture = slot("normal", true, "a normal map");
+  }
+
+  int material_ref(const Node& n) const {
+    const std::string name = nonempty_string(n);
+    const auto it = m_material_index.find(name);
+    if (it == m_material_index.end()) {
+      std::vector<std::string> names;
+      for (const auto& [k, v] : m_material_index) names.push_back(k);
+      n.fail("unknown material '" + name + "' (materials: " + (names.empty() ? std::string("none") : join(names)) +
+             ")");
+    }
+    return it->second;
+  }
+
+  // ---- shapes ----
+
+  void parse_shapes(const Node& node) {
+    if (!node.value().is_array()) node.fail("expected an array of shapes, got " + describe(node.value()));
+    for (std::size_t i = 0; i < node.value().size(); ++i) parse_shape(node.element(i));
+  }
+
+  void parse_shape(const Node& node) {
+    if (!node.value().is_object()) node.fail("expected a shape (a JSON object), got " + describe(node.value()));
+    if (!node.value().contains("type")) throw Failure{node.child_pointer("type"), "required key is missing"};
+    const std::string type =
+        word(Node(node.value().at("type"), node.child_pointer("type")), {"sphere", "quad", "disk", "mesh"});
+    if (type == "sphere") {
+      const Object o(node, {"type", "center", "radius", "material"}, "a sphere");
+      SphereShape s;
+      s.center = vec3(o.require("center"));
+      s.radius = positive(o.require("radius"));
+      s.material = material_ref(o.require("material"));
+      m_scene.spheres.push_back(s);
+    } else if (type == "quad") {
+      const Object o(node, {"type", "corner", "u", "v", "material"}, "a quad");
+      QuadShape q;
+      q.corner = vec3(o.require("corner"));
+      q.u = nonzero_vec3(o.require("u"));
+      q.v = nonzero_vec3(o.require("v"));
+      const Vec3 n = cross(normalize(q.u), normalize(q.v));
+      if (length(n) < 1e-9) throw Failure{o.node().child_pointer("v"), "u and v are parallel: the quad has no area"};
+      q.material = material_ref(o.require("material"));
+      m_scene.quads.push_back(q);
+    } else if (type == "disk") {
+      const Object o(node, {"type", "center", "normal", "radius", "material"}, "a disk");
+      DiskShape d;
+      d.center = vec3(o.require("center"));
+      if (auto n = o.get("normal")) d.normal = direction(*n);
+      d.radius = positive(o.require("radius"));
+      d.material = material_ref(o.require("material"));
+      m_scene.disks.push_back(d);
+    } else {
+      const Object o(node, {"type", "file", "transform", "material"}, "a mesh");
+      const Node file_node = o.require("file");
+      const std::filesystem::path path = file(file_node);
+      MeshTransform xf;
+      if (auto n = o.get("transform")) xf = parse_transform(*n);
+      const int material = material_ref(o.require("material"));
+      auto cached = m_meshes.find(path.string());
+      if (cached == m_meshes.end()) {
+        auto loaded = load_mesh(path);
+        if (!loaded) file_node.fail(loaded.error().message);
+        cached = m_meshes.emplace(path.string(), std::move(*loaded)).first;
+      }
+      MeshShape mesh = cached->second;
+      transform_mesh(mesh, xf);
+      mesh.material = material;
+      m_scene.meshes.push_back(std::move(mesh));
+    }
+  }
+
+  static MeshTransform parse_transform(const Node& node) {
+    const Object o(node, {"translate", "rotate", "rotate_y", "scale"}, "a transform");
+    Vec3 translate;
+    Vec3 axis{0.0, 1.0, 0.0};
+    double degrees = 0.0;
+    Vec3 scale{1.0, 1.0, 1.0};
+    if (auto n = o.get("translate")) translate = vec3(*n);
+    if (o.has("rotate") && o.has("rotate_y"))
+      throw Failure{o.node().child_pointer("rotate_y"), "give 'rotate' or 'rotate_y', not both"};
+    if (auto n = o.get("rotate")) {
+      if (!n->value().is_array() || n->value().size() != 4)
+        n->fail("expected [axis x, axis y, axis z, degrees], got " + describe(n->value()));
+      const Vec3 a{number(n->element(0)), number(n->element(1)), number(n->element(2))};
+      if (a.x == 0.0 && a.y == 0.0 && a.z == 0.0) n->fail("the rotation axis is the zero vector");
+      axis = normalize(a);
+      degrees = number(n->element(3));
+    }
+    if (auto n = o.get("rotate_y")) degrees = number(*n);
+    if (auto n = o.get("scale")) {
+      if (n->value().is_number()) {
+        const double s = positive(*n);
+        scale = {s, s, s};
+      } else if (n->value().is_array() && n->value().size() == 3) {
+        scale = {positive(n->element(0)), positive(n->element(1)), positive(n->element(2))};
+      } else {
+        n->fail("expected a number or [sx, sy, sz], got " + describe(n->value()));
+      }
+    }
+    return make_mesh_transform(translate, axis, degrees, scale);
+  }
+
+  // ---- lights ----
+
+  void parse_lights(const Node& node) {
+    if (!node.value().is_array()) node.fail("expected an array of lights, got " + describe(node.value()));
+    for (std::size_t i = 0; i < node.value().size(); ++i) parse_light(node.element(i));
+  }
+
+  // color x intensity (or the alternatives of point and spot lights) -> radiometric.
+  Rgb light_colour(const Object& o) const { return o.has("color") ? colour(*o.get("color")) : Rgb::gray(1.0); }
+
+  Rgb punctual_intensity(const Object& o, double cos_outer) const {
+    const Rgb c = light_colour(o);
+    std::vector<std::string_view> given;
+    for (std::string_view key : {"intensity", "power", "blender_watts"}) {
+      if (o.has(key)) given.push_back(key);
+    }
+    if (given.size() > 1) {
+      throw Failure{o.node().child_pointer(given[1]),
+                    "give one of 'intensity', 'power' or 'blender_watts', not several"};
+    }
+    if (o.has("power")) {
+      const Node n = *o.get("power");
+      const double power = non_negative(n);
+      if (m_units == Units::game) {
+        n.fail(
+            "'power' needs \"units\": \"radiometric\" (watts) or \"photometric\" (lumens); game units have no power");
+      }
+      const Rgb watts = m_units == Units::photometric ? radiometric_from_photometric(c, power) : c * power;
+      return convert(watts, "W", "W/sr", cos_outer);  // I = Phi / (solid angle of the sphere or the cone)
+    }
+    if (o.has("blender_watts")) {
+      return convert(c * non_negative(*o.get("blender_watts")), "blender-W", "W/sr");  // I = P / (4 pi)
+    }
+    const double value = o.has("intensity") ? non_negative(*o.get("intensity")) : 1.0;
+    return radiometric(c, value, m_units, LightQuantity::intensity);
+  }
+
+  void parse_light(const Node& node) {
+    if (!node.value().is_object()) node.fail("expected a light (a JSON object), got " + describe(node.value()));
+    if (!node.value().contains("type")) throw Failure{node.child_pointer("type"), "required key is missing"};
+    const std::string type = word(Node(node.value().at("type"), node.child_pointer("type")),
+                                  {"directional", "point", "spot", "sphere", "hemisphere"});
+    if (type == "directional") {
+      const Object o(node, {"type", "direction", "color", "intensity"}, "a directional light");
+      DirectionalLight l;
+      l.to_light = direction(o.require("direction"));
+      const double value = o.has("intensity") ? non_negative(*o.get("intensity")) : 1.0;
+      l.irradiance = radiometric(light_colour(o), value, m_units, LightQuantity::irradiance);
+      m_scene.lights.emplace_back(l);
+    } else if (type == "point") {
+      const Object o(node, {"type", "position", "color", "intensity", "power", "blender_watts"}, "a point light");
+      PointLight l;
+      l.position = vec3(o.require("position"));
+      l.intensity = punctual_intensity(o, -1.0);
+      m_scene.lights.emplace_back(l);
+    } else if (type == "spot") {
+      const Object o(node,
+                     {"type", "position", "direction", "inner_angle", "outer_angle", "color", "intensity", "power",
+                      "blender_watts"},
+                     "a spot light");
+      SpotLight l;
+      l.position = vec3(o.require("position"));
+      l.axis = direction(o.require("direction"));
+      const double outer = o.has("outer_angle") ? number_in(*o.get("outer_angle"), 0.0, true, 90.0, false) : 45.0;
+      const double inner = o.has("inner_angle") ? number_in(*o.get("inner_angle"), 0.0, false, outer, true) : 0.0;
+      l.cos_outer = std::cos(deg_to_rad(outer));
+      l.cos_inner = std::cos(deg_to_rad(inner));
+      l.intensity = punctual_intensity(o, l.cos_outer);
+      m_scene.lights.emplace_back(l);
+    } else if (type == "sphere") {
+      const Object o(node, {"type", "center", "radius", "radiance", "color", "intensity"}, "a sphere light");
+      SphereLight l;
+      l.center = vec3(o.require("center"));
+      l.radius = positive(o.require("radius"));
+      if (o.has("radiance")) {
+        for (const char* key : {"color", "intensity"}) {
+          if (o.has(key))
+            throw Failure{o.node().child_pointer(key), "give 'radiance' or 'color' x 'intensity', not both"};
+        }
+        l.radiance = radiometric(colour(*o.get("radiance")), m_units, LightQuantity::radiance);
+      } else {
+        const double value = o.has("intensity") ? non_negative(*o.get("intensity")) : 1.0;
+        l.radiance = radiometric(light_colour(o), value, m_units, LightQuantity::radiance);
+      }
+      m_scene.lights.emplace_back(l);
+    } else {
+      const Object o(node, {"type", "sky", "ground", "up"}, "a hemisphere light");
+      HemisphereLight l;
+      l.sky = radiometric(colour(o.require("sky")), m_units, LightQuantity::radiance);
+      if (auto n = o.get("ground")) l.ground = radiometric(colour(*n), m_units, LightQuantity::radiance);
+      if (auto n = o.get("up")) l.up = direction(*n);
+      m_scene.lights.emplace_back(l);
+    }
+  }
+
+  // ---- environment ----
+
+  void parse_environment(const Node& node) {
+    if (!node.value().is_object()) node.fail("expected an environment (a JSON object), got " + describe(node.value()));
+    std::vector<std::string> kinds;
+    for (const char* k : {"file", "uniform", "sky"}) {
+      if (node.value().contains(k)) kinds.emplace_back(k);
+    }
+    if (kinds.empty()) node.fail("an environment needs one of 'file', 'uniform' or 'sky'");
+    if (kinds.size() > 1)
+      throw Failure{node.child_pointer(kinds[1]), "give one of 'file', 'uniform' or 'sky', not several"};
+    Environment& env = m_scene.environment;
+    if (kinds[0] == "file") {
+      const Object o(node, {"file", "rotation", "scale"}, "an image environment");
+      const Node file_node = *o.get("file");
+      const std::filesystem::path path = file(file_node);
+      auto image = read_image(path);
+      if (!image) file_node.fail(image.error().message);
+      if (image->width != 2 * image->height) {
+        file_node.fail("'" + path.string() + "' is " + std::to_string(image->width) + " x " +
+                       std::to_string(image->height) + "; a lat-long map is twice as wide as it is high");
+      }
+      env.kind = Environment::Kind::image;
+      env.latlong = std::move(*image);
+      env.source = path.string();
+      if (auto n = o.get("rotation")) env.rotation_deg = number(*n);
+      const double scale = o.has("scale") ? non_negative(*o.get("scale")) : 1.0;
+      // The map's texels are radiance in the scene's units; fold the unit conversion into the scale.
+      env.scale = scale * radiometric(Rgb::gray(1.0), m_units, LightQuantity::radiance).r;
+    } else if (kinds[0] == "uniform") {
+      const Object o(node, {"uniform"}, "a uniform environment");
+      env.kind = Environment::Kind::uniform;
+      env.uniform = radiometric(colour(*o.get("uniform")), m_units, LightQuantity::radiance);
+      env.source = "uniform";
+    } else {
+      const Object outer(node, {"sky"}, "a sky environment");
+      const Object o(*outer.get("sky"),
+                     {"sun_direction", "sun_angular_radius", "sun_irradiance", "zenith", "horizon", "ground"}, "a sky");
+      SkyModel& sky = env.sky;
+      if (auto n = o.get("sun_direction")) sky.sun_direction = direction(*n);
+      if (auto n = o.get("sun_angular_radius")) sky.sun_angular_radius_deg = number_in(*n, 0.0, true, 45.0, false);
+      if (auto n = o.get("sun_irradiance"))
+        sky.sun_irradiance = radiometric(colour(*n), m_units, LightQuantity::irradiance);
+      if (auto n = o.get("zenith")) sky.zenith = radiometric(colour(*n), m_units, LightQuantity::radiance);
+      if (auto n = o.get("horizon")) sky.horizon = radiometric(colour(*n), m_units, LightQuantity::radiance);
+      if (auto n = o.get("ground")) sky.ground = radiometric(colour(*n), m_units, LightQuantity::radiance);
+      env.kind = Environment::Kind::sky;
+      env.source = "sky";
+    }
+  }
+
+  std::filesystem::path m_base_dir;
+  Scene& m_scene;
+  Units m_units = Units::game;
+  std::map<std::string, int, std::less<>> m_texture_index;
+  std::map<std::string, int, std::less<>> m_material_index;
+  std::map<std::string, MeshShape> m_meshes;  // each mesh file read once, by resolved path
+};
+
+// Tracks the JSON pointer of the value being parsed (for duplicate keys and number overflow, which
+// nlohmann reports without a position) through the parser's callback events.
+class PointerTracker {
+ public:
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        m_stack.push_back({false, current(), 0, {}, {}});
+        break;
+      case json::parse_event_t::array_start:
+        m_stack.push_back({true, current(), 0, {}, {}});
+        break;
+      case json::parse_event_t::key: {
+        Frame& f = m_stack.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second && !m_duplicate)
+          m_duplicate = Failure{current(), "duplicate key '" + f.key + "'"};
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        m_stack.pop_back();
+        element_done();
+        break;
+      case json::parse_event_t::value:
+        element_done();
+        break;
+    }
+    return true;
+  }
+
+  // The pointer of the value being parsed now.
+  std::string current() const {
+    if (m_stack.empty()) return "";
+    const Frame& f = m_stack.back();
+    return f.pointer + "/" + (f.array ? std::to_string(f.index) : pointer_token(f.key));
+  }
+  const std::optional<Failure>& duplicate() const { return m_duplicate; }
+
+ private:
+  struct Frame {
+    bool array = false;
+    std::string pointer;
+    std::size_t index = 0;
+    std::string key;
+    std::set<std::string> keys;
+  };
+  void element_done() {
+    if (!m_stack.empty() && m_stack.back().array) ++m_stack.back().index;
+  }
+  std::vector<Frame> m_stack;
+  std::optional<Failure> m_duplicate;
+};
+
+// "[json.exception.parse_error.101] parse error at line 3, column 7: syntax error ..." ->
+// "line 3, column 7: malformed JSON: syntax error ...".
+std::string syntax_message(const std::string& what) {
+  const auto at = what.find("line ");
+  const auto colon = at == std::string::npos ? std::string::npos : what.find(": ", at);
+  if (colon == std::string::npos) {
+    const auto bracket = what.find("] ");
+    return "malformed JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2));
+  }
+  return what.substr(at, colon - at) + ": malformed JSON: " + what.substr(colon + 2);
+}
+
+}  // namespace
+
+std::span<const std::string_view> scene_top_level_keys() { return top_level_keys; }
+
+Result<Scene> parse_scene(const nlohmann::json& document, const std::filesystem::path& base_dir,
+                          const std::string& source) {
+  Scene scene;
+  scene.source = source;
+  try {
+    Parser(base_dir, scene).parse(document);
+  } catch (const Failure& f) {
+    return make_error(source + ": " + (f.pointer.empty() ? std::string() : f.pointer + ": ") + f.message);
+  }
+  return scene;
+}
+
+Result<Scene> load_scene(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return make_error(source + ": file not found");
+  if (!std::filesystem::is_regular_file(path, ec)) return make_error(source + ": not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in.is_open()) return make_error(source + ": cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) return make_error(source + ": cannot read the file");
+
+  PointerTracker tracker;
+  json document;
+  try {
+    document = json::parse(text.str(), std::ref(tracker));
+  } catch (const json::parse_error& e) {
+    return make_error(source + ": " + syntax_message(e.what()));
+  } catch (const json::exception& e) {
+    // Number overflow (1e999) is reported without a position; the tracker knows which value it was.
+    const std::string what = e.what();
+    const auto bracket = what.find("] ");
+    return make_error(source + ": " + tracker.current() +
+                      ": malformed JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
+  }
+  if (tracker.duplicate())
+    return make_error(source + ": " + tracker.duplicate()->pointer + ": " + tracker.duplicate()->message);
+  return parse_scene(document, path.parent_path(), source);
+}
+
+}  // namespace shadelab
