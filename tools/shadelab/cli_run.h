@@ -1,0 +1,62 @@
+// Test helpers: run the built shadelab binary and capture its exit code, stdout and stderr.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace shadelab::testing {
+
+struct CliRun {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+inline CliRun run(const std::string& args) {
+  static int counter = 0;
+  const std::string err_path = ::testing::TempDir() + "shadelab_cli_err_" + std::to_string(counter++) + ".txt";
+  const std::string cmd = std::string(SHADELAB_EXE) + " " + args + " 2>" + err_path;
+  CliRun r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream f(err_path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  r.err = ss.str();
+  std::remove(err_path.c_str());
+  return r;
+}
+
+inline nlohmann::json json_of(const CliRun& r) {
+  EXPECT_EQ(r.code, 0) << r.err;
+  try {
+    return nlohmann::json::parse(r.out);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not JSON: " << e.what() << "\n" << r.out;
+    return {};
+  }
+}
+
+// A usage error: exit code 2, exactly one line on stderr, which mentions `needle`, and nothing on stdout.
+inline void expect_usage_error(const std::string& args, const std::string& needle) {
+  const CliRun r = run(args);
+  EXPECT_EQ(r.code, 2) << args << "\nstderr: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\nstderr: " << r.err;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << args << "\nstderr: " << r.err;
+  EXPECT_TRUE(r.out.empty()) << args << "\nstdout: " << r.out;
+}
+
+}  // namespace shadelab::testing

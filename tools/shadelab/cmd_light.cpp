@@ -1,0 +1,78 @@
+// shadelab light VALUE --from UNIT --to UNIT [--cone DEG] [--json]: light unit conversions.
+#include <fmt/core.h>
+
+#include <cmath>
+
+#include "cli_common.h"
+#include "shadelab/core/constants.h"
+#include "shadelab/light/units.h"
+
+namespace shadelab::cli {
+
+namespace {
+const char* quantity_name(LightQuantity q) {
+  switch (q) {
+    case LightQuantity::irradiance: return "irradiance (directional lights)";
+    case LightQuantity::intensity: return "intensity (point and spot lights)";
+    case LightQuantity::radiance: return "radiance (area lights, environments)";
+  }
+  return "";
+}
+
+struct LightOptions {
+  std::string value;
+  std::string from;
+  std::string to;
+  double cone_deg = 180.0;
+  bool list = false;
+  bool json = false;
+};
+
+void run_light(const LightOptions& o) {
+  if (o.list) {
+    nlohmann::json units = nlohmann::json::array();
+    for (const auto& u : light_units()) {
+      units.push_back({{"name", u.name}, {"quantity", quantity_name(u.quantity)}, {"description", u.description}});
+      if (!o.json) fmt::print("{:<14} {:<38} {}\n", u.name, quantity_name(u.quantity), u.description);
+    }
+    if (o.json) print_json({{"units", units}});
+    return;
+  }
+  if (o.value.empty() || o.from.empty() || o.to.empty()) throw UsageError("light: give VALUE --from UNIT --to UNIT (units: light --list)");
+  auto nums = parse_numbers(o.value);
+  if (!nums) throw UsageError("VALUE: " + nums.error().message);
+  if (nums->size() != 1 && nums->size() != 3) throw UsageError("VALUE: expected a number or r,g,b, got '" + o.value + "'");
+  for (double v : *nums) {
+    if (v < 0.0) throw UsageError(fmt::format("VALUE: {} is negative", v));
+  }
+  if (!std::isfinite(o.cone_deg) || o.cone_deg <= 0.0 || o.cone_deg > 180.0) {
+    throw UsageError(fmt::format("--cone: {} is out of range (0, 180] degrees", o.cone_deg));
+  }
+  const Rgb in = nums->size() == 3 ? Rgb{(*nums)[0], (*nums)[1], (*nums)[2]} : Rgb::gray((*nums)[0]);
+  // --cone is the half-angle of the outer cone; 180 degrees is the whole sphere, a point light.
+  const double cos_outer = std::cos(deg_to_rad(o.cone_deg));
+  const Rgb out = unwrap(convert_light(in, o.from, o.to, std::max(-1.0, cos_outer)));
+  if (o.json) {
+    print_json({{"value", to_json(out)}, {"unit", o.to}, {"from", {{"value", to_json(in)}, {"unit", o.from}}}});
+  } else if (nums->size() == 1) {
+    fmt::print("{} {} = {:.10g} {}\n", in.r, o.from, out.r, o.to);
+  } else {
+    fmt::print("{},{},{} {} = {:.10g},{:.10g},{:.10g} {}\n", in.r, in.g, in.b, o.from, out.r, out.g, out.b, o.to);
+  }
+}
+}  // namespace
+
+void add_light_command(CLI::App& app, Command& command) {
+  auto o = std::make_shared<LightOptions>();
+  auto* sub = app.add_subcommand("light", "convert light values between game, radiometric and photometric units");
+  sub->add_option("VALUE", o->value, "a number or r,g,b");
+  sub->add_option("--from", o->from, "unit of VALUE (see --list)");
+  sub->add_option("--to", o->to, "unit to convert to");
+  sub->add_option("--cone", o->cone_deg, "spot light: half-angle of the outer cone in degrees, for W and lm (180 = point light)")
+      ->capture_default_str();
+  sub->add_flag("--list", o->list, "list the units");
+  sub->add_flag("--json", o->json, "machine-readable output: {\"value\": [r, g, b], \"unit\": ...}");
+  sub->callback([o, &command] { command.run = [o] { run_light(*o); }; });
+}
+
+}  // namespace shadelab::cli

@@ -1,0 +1,61 @@
+// shadelab: the command-line tool. Exit codes: 0 success, 1 a check that ran and failed,
+// 2 bad input (one line on stderr naming the problem).
+#include <fmt/core.h>
+
+#include <exception>
+#include <iostream>
+
+#include "cli_common.h"
+
+int main(int argc, char** argv) {
+  using namespace shadelab::cli;
+  CLI::App app{"shadelab: physically based shading, correct and checkable"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "shadelab 0.1.0");
+  Command command;
+  add_zoo_command(app, command);
+  add_brdf_command(app, command);
+  add_fresnel_command(app, command);
+  add_light_command(app, command);
+  add_bake_command(app, command);
+  add_render_command(app, command);
+  if (argc > 1 && argv[1][0] != '-') {
+    // An unknown command gets a message naming it, not CLI11's "a subcommand is required".
+    std::string names;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+      known = known || sub->get_name() == argv[1];
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      std::cerr << "shadelab: unknown command '" << argv[1] << "' (commands: " << names << ")\n";
+      return 2;
+    }
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::CallForAllHelp&) {
+    std::cout << app.help("", CLI::AppFormatMode::All);
+    return 0;
+  } catch (const CLI::CallForVersion& v) {
+    std::cout << v.what() << "\n";
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    // One line, exit code 2, whatever CLI11's own code would have been.
+    std::cerr << "shadelab: " << e.what() << " (see --help)\n";
+    return 2;
+  }
+  try {
+    if (command.run) command.run();
+  } catch (const UsageError& e) {
+    std::cerr << "shadelab: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "shadelab: internal error: " << e.what() << "\n";
+    return 3;
+  }
+  return 0;
+}
