@@ -181,6 +181,7 @@ const Brdf* Integrator::material_brdf(int material, Vec2 uv, BrdfPtr& holder) co
   const MaterialRuntime& rt = m_materials[static_cast<std::size_t>(material)];
   if (!rt.textured || rt.info == nullptr) return rt.brdf.get();
   const Material& m = m_scene.materials[static_cast<std::size_t>(material)];
+  uv = {uv.x * m.uv_scale.x, uv.y * m.uv_scale.y};  // texture tiling
   ParamValues v = *rt.base;
   if (m.kd_texture >= 0) {
     const Rgb c = sample_texture(m_scene.textures[static_cast<std::size_t>(m.kd_texture)], uv);
@@ -414,7 +415,8 @@ Rgb Integrator::li(Ray ray, Pcg32& rng, Counters& counters, FirstHit* first) con
     if (dot(ns, wo_world) <= 0.0) ns = ng;  // interpolated normal facing away: fall back
     const Material* material = hit.material >= 0 ? &m_scene.materials[static_cast<std::size_t>(hit.material)] : nullptr;
     if (material != nullptr && material->normal_texture >= 0) {
-      const Rgb t = sample_texture(m_scene.textures[static_cast<std::size_t>(material->normal_texture)], hit.uv);
+      const Vec2 uv{hit.uv.x * material->uv_scale.x, hit.uv.y * material->uv_scale.y};
+      const Rgb t = sample_texture(m_scene.textures[static_cast<std::size_t>(material->normal_texture)], uv);
       Vec3 tangent = hit.dpdu - ns * dot(hit.dpdu, ns);
       tangent = length(tangent) > 1e-12 ? normalize(tangent) : Frame::from_normal(ns).s;
       const Vec3 bitangent = cross(ns, tangent);
