@@ -31,4 +31,9 @@ nlohmann::json to_json(const Rgb& c) { return nlohmann::json::array({c.r, c.g, c
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << "\n"; }
 
+std::vector<CommandEntry>& command_registry() {
+  static std::vector<CommandEntry> entries;
+  return entries;
+}
+
 }  // namespace shadelab::cli

@@ -45,11 +45,16 @@ void print_json(const nlohmann::json& j);
 struct Command {
   std::function<void()> run;
 };
-void add_zoo_command(CLI::App& app, Command& command);
-void add_brdf_command(CLI::App& app, Command& command);
-void add_fresnel_command(CLI::App& app, Command& command);
-void add_light_command(CLI::App& app, Command& command);
-void add_bake_command(CLI::App& app, Command& command);
-void add_render_command(CLI::App& app, Command& command);
+
+// Each cmd_*.cpp registers its command with a static CommandRegistration; main adds them in `order`.
+using AddCommand = void (*)(CLI::App& app, Command& command);
+struct CommandEntry {
+  int order;
+  AddCommand add;
+};
+std::vector<CommandEntry>& command_registry();
+struct CommandRegistration {
+  CommandRegistration(int order, AddCommand add) { command_registry().push_back({order, add}); }
+};
 
 }  // namespace shadelab::cli

@@ -238,6 +238,7 @@ void run_convert(const BakeOptions& o) {
 
 }  // namespace
 
+namespace {
 void add_bake_command(CLI::App& app, Command& command) {
   auto* bake = app.add_subcommand("bake", "bake environment lighting: irradiance, SH9, prefiltered specular, conversion");
   bake->require_subcommand(1);
@@ -269,5 +270,9 @@ void add_bake_command(CLI::App& app, Command& command) {
   add("specular", "prefiltered specular mip chain (normalized Phong lobes) as KTX plus EXR faces", run_specular);
   add("convert", "lat-long <-> cube cross conversion and format change", run_convert);
 }
+
+}  // namespace
+
+const CommandRegistration registration_bake(60, add_bake_command);
 
 }  // namespace shadelab::cli

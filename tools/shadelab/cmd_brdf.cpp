@@ -100,6 +100,7 @@ void run_albedo(const BrdfOptions& o) {
 
 }  // namespace
 
+namespace {
 void add_brdf_command(CLI::App& app, Command& command) {
   auto* brdf = app.add_subcommand("brdf", "BRDF models: list, evaluate, directional albedo, checks");
   brdf->require_subcommand(1);
@@ -123,5 +124,9 @@ void add_brdf_command(CLI::App& app, Command& command) {
   albedo->callback([albedo_opts, &command] { command.run = [albedo_opts] { run_albedo(*albedo_opts); }; });
 
 }
+
+}  // namespace
+
+const CommandRegistration registration_brdf(30, add_brdf_command);
 
 }  // namespace shadelab::cli

@@ -20,6 +20,7 @@ struct FresnelOptions {
 };
 }  // namespace
 
+namespace {
 void add_fresnel_command(CLI::App& app, Command& command) {
   auto opts = std::make_shared<FresnelOptions>();
   auto* sub = app.add_subcommand("fresnel", "Fresnel reflectance of a smooth interface (exact, unpolarized)");
@@ -73,5 +74,9 @@ void add_fresnel_command(CLI::App& app, Command& command) {
     };
   });
 }
+
+}  // namespace
+
+const CommandRegistration registration_fresnel(40, add_fresnel_command);
 
 }  // namespace shadelab::cli

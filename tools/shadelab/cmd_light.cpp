@@ -62,6 +62,7 @@ void run_light(const LightOptions& o) {
 }
 }  // namespace
 
+namespace {
 void add_light_command(CLI::App& app, Command& command) {
   auto o = std::make_shared<LightOptions>();
   auto* sub = app.add_subcommand("light", "convert light values between game, radiometric and photometric units");
@@ -74,5 +75,9 @@ void add_light_command(CLI::App& app, Command& command) {
   sub->add_flag("--json", o->json, "machine-readable output: {\"value\": [r, g, b], \"unit\": ...}");
   sub->callback([o, &command] { command.run = [o] { run_light(*o); }; });
 }
+
+}  // namespace
+
+const CommandRegistration registration_light(50, add_light_command);
 
 }  // namespace shadelab::cli

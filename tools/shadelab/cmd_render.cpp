@@ -98,6 +98,7 @@ void run_render(const RenderCliOptions& o) {
 
 }  // namespace
 
+namespace {
 void add_render_command(CLI::App& app, Command& command) {
   auto o = std::make_shared<RenderCliOptions>();
   auto* sub = app.add_subcommand("render", "path-trace a scene (the built-in default scene without SCENE)");
@@ -117,5 +118,9 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");
   sub->callback([o, &command] { command.run = [o] { run_render(*o); }; });
 }
+
+}  // namespace
+
+const CommandRegistration registration_render(10, add_render_command);
 
 }  // namespace shadelab::cli

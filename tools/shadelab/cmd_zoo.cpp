@@ -57,6 +57,7 @@ void run_zoo(const std::vector<double>& exponents, bool json) {
 
 }  // namespace
 
+namespace {
 void add_zoo_command(CLI::App& app, Command& command) {
   auto exponents = std::make_shared<std::vector<double>>();
   auto json = std::make_shared<bool>(false);
@@ -69,5 +70,9 @@ void add_zoo_command(CLI::App& app, Command& command) {
     };
   });
 }
+
+}  // namespace
+
+const CommandRegistration registration_zoo(20, add_zoo_command);
 
 }  // namespace shadelab::cli

@@ -2,6 +2,7 @@
 // 2 bad input (one line on stderr naming the problem).
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <exception>
 #include <iostream>
 
@@ -13,12 +14,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "shadelab 0.1.0");
   Command command;
-  add_zoo_command(app, command);
-  add_brdf_command(app, command);
-  add_fresnel_command(app, command);
-  add_light_command(app, command);
-  add_bake_command(app, command);
-  add_render_command(app, command);
+  auto entries = command_registry();
+  std::sort(entries.begin(), entries.end(), [](const CommandEntry& a, const CommandEntry& b) { return a.order < b.order; });
+  for (const auto& e : entries) e.add(app, command);
   if (argc > 1 && argv[1][0] != '-') {
     // An unknown command gets a message naming it, not CLI11's "a subcommand is required".
     std::string names;

@@ -259,6 +259,7 @@ TEST(Plot, SvgIsWellFormedXmlOfTheRequestedSize) {
 
 TEST(Plot, TheXmlCheckerRejectsWhatIsNotWellFormed) {
   EXPECT_EQ(xml_problem("<a><b/><c x=\"1>2\">t &amp; u</c></a>", nullptr), "");
+  EXPECT_NE(xml_problem("<a><b></c></a>", nullptr), "");  // an end tag of another name
   EXPECT_NE(xml_problem("<a><b></a>", nullptr), "");
   EXPECT_NE(xml_problem("<a>", nullptr), "");
   EXPECT_NE(xml_problem("<a>x & y</a>", nullptr), "");

@@ -86,7 +86,7 @@ double sphere_distance(const Vec3& p, const Vec3& w, const Vec3& center, double 
 class Integrator {
  public:
   Integrator(const Scene& scene, SamplingMode mode, int max_depth)
-      : m_scene(scene), m_mode(mode), m_max_depth(max_depth), m_accel(scene), m_env(scene) {}
+      : m_scene(scene), m_mode(mode), m_max_depth(max_depth), m_accel(scene), m_env(scene), m_id(next_id()) {}
 
   Result<bool> prepare();
   Rgb li(Ray ray, Pcg32& rng, Counters& counters, FirstHit* first) const;
@@ -108,6 +108,11 @@ class Integrator {
   std::vector<LightRef> m_lights;
   std::vector<int> m_sphere_shape_light, m_quad_light, m_disk_light;  // shape index -> light index or -1
   int m_env_light = -1;
+  std::uint64_t m_id;  // unique per integrator, for per-thread caches
+  static std::uint64_t next_id() {
+    static std::atomic<std::uint64_t> counter{0};
+    return ++counter;
+  }
 };
 
 Result<bool> Integrator::prepare() {
@@ -182,7 +187,18 @@ const Brdf* Integrator::material_brdf(int material, Vec2 uv, BrdfPtr& holder) co
   if (!rt.textured || rt.info == nullptr) return rt.brdf.get();
   const Material& m = m_scene.materials[static_cast<std::size_t>(material)];
   uv = {uv.x * m.uv_scale.x, uv.y * m.uv_scale.y};  // texture tiling
-  ParamValues v = *rt.base;
+  // A per-thread working copy of the material's parameters, so a textured hit only overwrites the numbers
+  // the textures drive instead of copying the whole parameter set.
+  thread_local std::vector<std::optional<ParamValues>> scratch;
+  thread_local std::uint64_t scratch_owner = 0;
+  if (scratch_owner != m_id) {  // another integrator (scene) used this thread before
+    scratch.clear();
+    scratch_owner = m_id;
+  }
+  if (scratch.size() <= static_cast<std::size_t>(material)) scratch.resize(static_cast<std::size_t>(material) + 1);
+  auto& slot = scratch[static_cast<std::size_t>(material)];
+  if (!slot) slot = *rt.base;
+  ParamValues& v = *slot;
   if (m.kd_texture >= 0) {
     const Rgb c = sample_texture(m_scene.textures[static_cast<std::size_t>(m.kd_texture)], uv);
     v.set_numbers("kd", {c.r, c.g, c.b});
