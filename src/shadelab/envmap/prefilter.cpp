@@ -38,7 +38,8 @@ namespace {
 // An input level prepared for culling: tiles of T x T texels with a bounding cone each.
 struct Tile {
   Vec3 axis;
-  double cos_radius = 1.0;  // every texel centre of the tile is within this angle of the axis
+  double radius = 0.0;        // every texel centre of the tile is within this angle (radians) of the axis
+  double cos_reach = -1.0;    // cos(radius + cutoff angle) for the level being filtered, -1 past pi
   int face = 0, x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
@@ -51,7 +52,7 @@ Level prepare_level(const CubeMap& cube) {
   Level lv;
   lv.cube = &cube;
   const int n = cube.size;
-  const int tile = std::min(8, n);
+  const int tile = std::min(16, n);
   for (int f = 0; f < 6; ++f) {
     for (int ty = 0; ty < n; ty += tile) {
       for (int tx = 0; tx < n; tx += tile) {
@@ -65,7 +66,7 @@ Level prepare_level(const CubeMap& cube) {
         double c = 1.0;
         for (int y = t.y0; y < t.y1; ++y)
           for (int x = t.x0; x < t.x1; ++x) c = std::min(c, dot(t.axis, texel_direction(f, x, y, n)));
-        t.cos_radius = c;
+        t.radius = std::acos(std::clamp(c, -1.0, 1.0));
         lv.tiles.push_back(t);
       }
     }
@@ -80,10 +81,9 @@ Rgb convolve(const Level& lv, const Vec3& r, double n, double cos_cutoff) {
   double weight = 0.0;
   for (const Tile& t : lv.tiles) {
     // Skip the tile if even its nearest possible texel is beyond the cutoff angle from r.
-    // The angle from r to the nearest texel centre of the tile is at least angle(r, axis) - radius.
-    const double to_axis = std::acos(std::clamp(dot(r, t.axis), -1.0, 1.0));
-    const double radius = std::acos(std::clamp(t.cos_radius, -1.0, 1.0));
-    if (to_axis > radius && std::cos(to_axis - radius) < cos_cutoff) continue;
+    // Every texel of the tile is at least angle(r, axis) - radius from r: skip the tile when that exceeds
+    // the cutoff angle, i.e. when r.axis < cos(radius + cutoff) (precomputed per level, no acos here).
+    if (dot(r, t.axis) < t.cos_reach) continue;
     const Image& img = cube.faces[static_cast<std::size_t>(t.face)];
     for (int y = t.y0; y < t.y1; ++y) {
       for (int x = t.x0; x < t.x1; ++x) {
@@ -131,14 +131,16 @@ Result<PrefilteredCube> prefilter_specular(const CubeMap& radiance, const Prefil
   for (int i = 0; i < levels; ++i) {
     const int size = std::max(1, o.size >> i);
     const double n = prefilter_exponent(i, levels, o.gloss_scale, o.gloss_bias);
-    // Coarsest input whose texel angle (about (pi/2)/N) is at most a quarter of the lobe width 1/sqrt(n).
+    // Coarsest input whose texel angle (about (pi/2)/N) is at most half the lobe width 1/sqrt(n).
     std::size_t pick = 0;
     for (std::size_t k = 0; k < pyramid.size(); ++k) {
-      if ((pi / 2.0) / pyramid[k].size <= 0.25 / std::sqrt(n)) pick = k;
+      if ((pi / 2.0) / pyramid[k].size <= 0.5 / std::sqrt(n)) pick = k;
     }
     if (prepared[pick].cube == nullptr) prepared[pick] = prepare_level(pyramid[pick]);
-    const Level& lv = prepared[pick];
+    Level& lv = prepared[pick];
     const double cos_cutoff = std::pow(1e-9, 1.0 / n);  // lobe below 1e-9 of its peak beyond this
+    const double cutoff = std::acos(cos_cutoff);
+    for (Tile& t : lv.tiles) t.cos_reach = t.radius + cutoff >= pi ? -2.0 : std::cos(t.radius + cutoff);
     CubeMap level(size);
     const int rows = 6 * size;
     const int chunk = std::max(1, rows / 20);

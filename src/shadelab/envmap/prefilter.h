@@ -13,7 +13,7 @@
 // Blinn-Phong exponents convert by n_phong = n_blinn / 4 (the lobe (N.H)^n about the mirror direction has
 // the angular width of (R.L)^(n/4) near its peak, since the half vector turns half as fast as L).
 //
-// Each level reads the input level whose texels are at most a quarter of the lobe's width (1/sqrt(n)
+// Each level reads the input level whose texels are at most half the lobe's width (1/sqrt(n)
 // radians), built by solid-angle-weighted halving; texels where the lobe is below 1e-9 of its peak are
 // skipped by a per-tile bounding-cone test: a result changes by at most 1e-9 x (the input's dynamic range),
 // 1e-4 relative for a sun 10^5 times brighter than the sky.

@@ -54,7 +54,8 @@ TEST(Prefilter, MatchesTheFunkHeckeBandFactors) {
       const int c = level.size / 2;
       const Vec3 r = texel_direction(face, c, c, level.size);
       const double expected = sh9_evaluate(sh, r, factors).r;
-      EXPECT_NEAR(level.texel(face, c, c).r, expected, 2e-3) << "level " << i << " n " << n;
+      // Within 0.3%: texels of half the lobe width discretize the lobe.
+      EXPECT_NEAR(level.texel(face, c, c).r, expected, 3e-3 * expected) << "level " << i << " n " << n;
     }
   }
 }
