@@ -19,7 +19,7 @@ constexpr double pi = std::numbers::pi;
 
 TEST(Cli, HelpForEveryCommand) {
   for (const char* c : {"--help", "zoo --help", "brdf --help", "brdf list --help", "brdf eval --help",
-                        "brdf albedo --help", "fresnel --help", "light --help", "bake --help", "bake irradiance --help", "render --help"}) {
+                        "brdf albedo --help", "brdf check --help", "fresnel --help", "light --help", "bake --help", "bake irradiance --help", "render --help"}) {
     const CliRun r = run(c);
     EXPECT_EQ(r.code, 0) << c;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << c;
@@ -82,6 +82,28 @@ TEST(Cli, BrdfAlbedoNormalizedPhongIsOne) {
   EXPECT_LT(j["albedo"][1][0].get<double>(), 1.0);
   expect_usage_error("brdf albedo lambert --theta 95", "--theta");
   expect_usage_error("brdf albedo lambert --theta -1", "--theta");
+}
+
+TEST(Cli, BrdfCheckLambertPasses) {
+  const auto j = json_of(run("brdf check lambert --json"));
+  ASSERT_TRUE(j.contains("checks"));
+  EXPECT_TRUE(j["passed"].get<bool>());
+  EXPECT_GE(j["checks"].size(), 4u);
+  for (const auto& c : j["checks"]) {
+    EXPECT_TRUE(c.contains("name") && c.contains("passed") && c.contains("figure")) << c.dump();
+  }
+  expect_usage_error("brdf check ward --param alpha=0", "alpha");
+}
+
+TEST(Cli, BrdfCheckReportsAFailureWithExitCode1) {
+  // The 1981 Cook-Torrance form is four times the microfacet form: with F = 1 it reflects more than it gets.
+  const CliRun r = run("brdf check cook-torrance --param kd=0 --param f=none --param form=1981 --json");
+  EXPECT_EQ(r.code, 1) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(j["passed"].get<bool>());
+  bool energy_failed = false;
+  for (const auto& c : j["checks"]) energy_failed = energy_failed || (c["name"] == "energy" && !c["passed"].get<bool>());
+  EXPECT_TRUE(energy_failed);
 }
 
 TEST(Cli, FresnelKnownValues) {

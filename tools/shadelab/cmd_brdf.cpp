@@ -6,6 +6,7 @@
 
 #include "cli_common.h"
 #include "shadelab/analysis/albedo.h"
+#include "shadelab/analysis/check.h"
 #include "shadelab/core/constants.h"
 
 namespace shadelab::cli {
@@ -98,6 +99,26 @@ void run_albedo(const BrdfOptions& o) {
   if (o.json) print_json({{"theta", thetas}, {"albedo", albedo}});
 }
 
+void run_check(const BrdfOptions& o) {
+  const CheckReport report = unwrap(check_brdf(o.model, parse_assignments(o.params)));
+  nlohmann::json items = nlohmann::json::array();
+  for (const auto& item : report.items) {
+    items.push_back({{"name", item.name}, {"passed", item.passed}, {"figure", item.figure},
+                     {"threshold", std::isfinite(item.threshold) ? nlohmann::json(item.threshold) : nlohmann::json(nullptr)},
+                     {"detail", item.detail}});
+  }
+  if (o.json) {
+    print_json({{"model", report.model}, {"params", report.params}, {"passed", report.passed()}, {"checks", items}});
+  } else {
+    fmt::print("{} {}\n", report.model, report.params);
+    for (const auto& item : report.items) {
+      fmt::print("  {:<4} {:<22} {:>12.4g}  {}\n", item.passed ? "ok" : "FAIL", item.name, item.figure, item.detail);
+    }
+    fmt::print("{}\n", report.passed() ? "all checks passed" : "some checks failed");
+  }
+  if (!report.passed()) std::exit(1);  // documented: a check that ran and failed
+}
+
 }  // namespace
 
 namespace {
@@ -122,6 +143,11 @@ void add_brdf_command(CLI::App& app, Command& command) {
   add_model_options(albedo, *albedo_opts);
   albedo->add_option("--theta", albedo_opts->theta, "viewing angles in degrees (default 0 15 30 45 60 75 85 89)");
   albedo->callback([albedo_opts, &command] { command.run = [albedo_opts] { run_albedo(*albedo_opts); }; });
+
+  auto check_opts = std::make_shared<BrdfOptions>();
+  auto* check = brdf->add_subcommand("check", "normalization, energy, reciprocity, pdf and chi-square checks (exit 1 on failure)");
+  add_model_options(check, *check_opts);
+  check->callback([check_opts, &command] { command.run = [check_opts] { run_check(*check_opts); }; });
 
 }
 

@@ -11,6 +11,7 @@
 #include "cli_common.h"
 #include "progress.h"
 #include "shadelab/render/film.h"
+#include "shadelab/render/game_renderer.h"
 #include "shadelab/render/path_tracer.h"
 #include "shadelab/scene/default_scene.h"
 #include "shadelab/scene/scene_json.h"
@@ -34,7 +35,12 @@ struct RenderCliOptions {
   bool filmic = false;
   bool aov = false;
   bool no_png = false;
-  std::string mode = "mis";
+  std::string mode = "reference";
+  std::string sampling = "mis";
+  std::string ambient = "sh9";
+  bool no_shadows = false;
+  bool no_specular_ambient = false;
+  bool drop_pi = false;
   bool json = false;
   bool progress = false;
 };
@@ -51,10 +57,21 @@ void run_render(const RenderCliOptions& o) {
   ro.max_depth = o.max_depth;
   ro.threads = o.threads;
   ro.aovs = o.aov;
-  if (o.mode == "mis") ro.mode = SamplingMode::mis;
-  else if (o.mode == "brdf") ro.mode = SamplingMode::brdf;
-  else if (o.mode == "light") ro.mode = SamplingMode::light;
-  else throw UsageError("--mode: '" + o.mode + "' is not one of mis | brdf | light");
+  if (o.sampling == "mis") ro.mode = SamplingMode::mis;
+  else if (o.sampling == "brdf") ro.mode = SamplingMode::brdf;
+  else if (o.sampling == "light") ro.mode = SamplingMode::light;
+  else throw UsageError("--sampling: '" + o.sampling + "' is not one of mis | brdf | light");
+  if (o.mode != "reference" && o.mode != "game") throw UsageError("--mode: '" + o.mode + "' is not one of reference | game");
+  GameOptions go;
+  if (o.ambient == "sh9") go.diffuse = GameAmbient::sh9;
+  else if (o.ambient == "irradiance") go.diffuse = GameAmbient::irradiance_map;
+  else if (o.ambient == "none") go.diffuse = GameAmbient::none;
+  else throw UsageError("--ambient: '" + o.ambient + "' is not one of sh9 | irradiance | none");
+  go.shadows = !o.no_shadows;
+  go.specular_ambient = !o.no_specular_ambient;
+  go.drop_pi = o.drop_pi;
+  go.threads = o.threads;
+  if (o.spp != -1) go.spp = o.spp;
   const std::filesystem::path exr(o.out);
   std::string ext = exr.extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -71,7 +88,7 @@ void run_render(const RenderCliOptions& o) {
   g_interrupted.store(false);
   ro.cancel = &g_interrupted;
   const auto previous = std::signal(SIGINT, on_interrupt);
-  auto result = render_scene(scene, ro);
+  auto result = o.mode == "game" ? render_game(scene, go) : render_scene(scene, ro);
   std::signal(SIGINT, previous);
   bar.finish();
   if (!result) throw UsageError(scene.source + ": " + result.error().message);
@@ -81,7 +98,7 @@ void run_render(const RenderCliOptions& o) {
   if (o.json) {
     nlohmann::json files = nlohmann::json::array();
     for (const auto& p : written) files.push_back(p.string());
-    print_json({{"scene", scene.source}, {"outputs", files}, {"width", scene.camera.width},
+    print_json({{"scene", scene.source}, {"mode", o.mode}, {"outputs", files}, {"width", scene.camera.width},
                 {"height", scene.camera.height}, {"spp", st.spp_done}, {"interrupted", st.cancelled},
                 {"seconds", st.seconds}, {"rays", st.rays},
                 {"samples_per_second", pixels * st.spp_done / std::max(1e-9, st.seconds)},
@@ -106,14 +123,19 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_option("--out", o->out, "linear EXR output")->capture_default_str();
   sub->add_option("--png", o->png, "tone-mapped PNG output (default: the EXR's name with .png)");
   sub->add_flag("--no-png", o->no_png, "write no PNG");
-  sub->add_option("--spp", o->spp, "samples per pixel (default: the scene's)");
+  sub->add_option("--spp", o->spp, "samples per pixel (default: the scene's; game mode: antialiasing, default 4)");
   sub->add_option("--threads", o->threads, "threads, 0 = all cores (default: the scene's)");
   sub->add_option("--max-depth", o->max_depth, "path vertices after the camera (default: the scene's)");
   sub->add_option("--seed", o->seed, "random seed (default: the scene's)");
   sub->add_option("--exposure", o->exposure, "PNG exposure in stops")->capture_default_str();
   sub->add_flag("--filmic", o->filmic, "PNG through the ACES filmic curve instead of clamping");
   sub->add_flag("--aov", o->aov, "also write albedo, normal and depth EXRs");
-  sub->add_option("--mode", o->mode, "sampling: mis, brdf or light")->capture_default_str();
+  sub->add_option("--mode", o->mode, "reference (the path tracer) or game (the game shading equation)")->capture_default_str();
+  sub->add_option("--sampling", o->sampling, "reference mode: mis, brdf or light sampling")->capture_default_str();
+  sub->add_option("--ambient", o->ambient, "game mode: diffuse ambient from sh9, irradiance (cube map) or none")->capture_default_str();
+  sub->add_flag("--no-shadows", o->no_shadows, "game mode: no shadow rays for punctual lights");
+  sub->add_flag("--no-specular-ambient", o->no_specular_ambient, "game mode: no prefiltered specular");
+  sub->add_flag("--drop-pi", o->drop_pi, "game mode, debug: forget the pi of the game light unit");
   sub->add_flag("--json", o->json, "machine-readable summary");
   sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");
   sub->callback([o, &command] { command.run = [o] { run_render(*o); }; });

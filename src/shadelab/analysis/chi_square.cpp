@@ -61,6 +61,75 @@ Vec3 cell_direction(double z, double phi) {
   return spherical_direction(std::sqrt(std::max(0.0, 1.0 - z * z)), z, phi);
 }
 
+
+struct Rect {
+  double z0, z1, phi0, phi1;
+};
+struct CellIntegral {
+  double value = 0.0;
+  bool converged = true;
+};
+
+double pdf_at(const Brdf& f, const Vec3& wo, double z, double phi) { return f.pdf(cell_direction(z, phi), wo); }
+
+// The integral of the pdf over a rectangle in (z, phi) with the singular point at its corner (zc, pc); the
+// opposite corner is (zf, pf). Each of the two triangles on either side of the diagonal is mapped to the
+// unit square by Duffy's transformation (Duffy, "Quadrature over a pyramid or cube of integrands with a
+// singularity at a vertex", SIAM J. Numer. Anal. 1982): (s, t) -> corner + s (A, B t) with Jacobian |A B| s,
+// which cancels a 1/r singularity at the corner, whatever its dependence on the direction of approach.
+CellIntegral corner_singular(const Brdf& f, const Vec3& wo, double zc, double pc, double zf, double pf,
+                             const QuadratureOptions& q) {
+  const double a = zf - zc;
+  const double b = pf - pc;
+  const double jacobian = std::abs(a * b);
+  const auto unit = [](double) { return 0.0; };
+  const auto one = [](double) { return 1.0; };
+  QuadratureOptions o = q;
+  o.abs_tol = 0.5 * q.abs_tol;
+  const QuadratureResult t1 = integrate_2d(
+      [&](double s, double t) { return jacobian * s * pdf_at(f, wo, zc + a * s, pc + b * s * t); }, 0.0, 1.0, unit,
+      one, o);
+  const QuadratureResult t2 = integrate_2d(
+      [&](double s, double t) { return jacobian * s * pdf_at(f, wo, zc + a * s * t, pc + b * s); }, 0.0, 1.0, unit,
+      one, o);
+  return {t1.value + t2.value, t1.converged && t2.converged};
+}
+
+// The integral of the pdf over one cell. Reflection samplers have an integrable singularity at wi = -wo (the
+// Jacobian 1 / (4 |wo.h|) as wo.h -> 0, with a strength that depends on the direction of approach); a cell
+// that holds it is cut there into pieces that each have it at a corner, and those are integrated by
+// corner_singular. At the poles (z = -1 or 1 for wo on the normal) the singularity is a cell edge, which
+// nested Gauss-Kronrod handles as it is.
+CellIntegral cell_integral(const Brdf& f, const Vec3& wo, const Rect& cell, Vec2 singular, const QuadratureOptions& q) {
+  constexpr double snap = 1e-12;
+  const double zs = singular.x;
+  const double ps = singular.y;
+  const bool at_pole = std::abs(zs) > 1.0 - 1e-9;
+  const bool z_in = zs >= cell.z0 - snap && zs <= cell.z1 + snap;
+  const bool phi_in = ps >= cell.phi0 - snap && ps <= cell.phi1 + snap;
+  if (at_pole || !z_in || !phi_in) {
+    QuadratureOptions inner = q;
+    inner.rel_tol = 0.1 * q.rel_tol;
+    inner.abs_tol = 0.1 * q.abs_tol / (cell.z1 - cell.z0);
+    const QuadratureResult p = integrate_2d(
+        [&](double z, double phi) { return pdf_at(f, wo, z, phi); }, cell.z0, cell.z1,
+        [&](double) { return cell.phi0; }, [&](double) { return cell.phi1; }, q, inner);
+    return {p.value, p.converged};
+  }
+  const double zc = std::clamp(zs, cell.z0, cell.z1);
+  const double pc = std::clamp(ps, cell.phi0, cell.phi1);
+  CellIntegral total;
+  for (double zf : {cell.z0, cell.z1}) {
+    for (double pf : {cell.phi0, cell.phi1}) {
+      if (std::abs(zf - zc) <= snap || std::abs(pf - pc) <= snap) continue;  // an empty piece
+      const CellIntegral piece = corner_singular(f, wo, zc, pc, zf, pf, q);
+      total.value += piece.value;
+      total.converged = total.converged && piece.converged;
+    }
+  }
+  return total;
+}
+
 }  // namespace
 
 double regularized_gamma_p(double a, double x) {
@@ -119,41 +188,18 @@ ChiSquareResult chi_square_test(const Brdf& f, const Vec3& wo, const ChiSquareOp
   q.abs_tol = n > 0.0 ? 1e-2 / n : 0.0;  // 0.01 counts per cell
   q.initial_intervals = 2;
   q.max_subdivisions = 200;
-  QuadratureOptions inner = q;
-  inner.rel_tol = 0.1 * q.rel_tol;
   r.integration_converged = true;
-  // Reflection samplers have an integrable singularity at wi = -wo (the Jacobian 1 / (4 |wo.h|)); a cell that
-  // contains it is split there, so that it sits at a corner of the pieces, where nested Gauss-Kronrod copes.
   const double z_s = -wo.z;
   const double phi_s = azimuth(-wo);
-  const auto pieces = [](double lo, double hi, double split) {
-    std::vector<double> edges{lo};
-    if (split > lo && split < hi) edges.push_back(split);
-    edges.push_back(hi);
-    return edges;
-  };
   for (int row = 0; row < r.rows; ++row) {
     const double z0 = -1.0 + 2.0 * row / r.rows;
     const double z1 = -1.0 + 2.0 * (row + 1) / r.rows;
-    const std::vector<double> z_edges = pieces(z0, z1, z_s);
     for (int col = 0; col < r.cols; ++col) {
       const double phi0 = two_pi * col / r.cols;
       const double phi1 = two_pi * (col + 1) / r.cols;
-      const std::vector<double> phi_edges = pieces(phi0, phi1, phi_s);
-      double probability = 0.0;
-      for (std::size_t i = 0; i + 1 < z_edges.size(); ++i) {
-        inner.abs_tol = 0.1 * q.abs_tol / (z_edges[i + 1] - z_edges[i]);
-        for (std::size_t j = 0; j + 1 < phi_edges.size(); ++j) {
-          const double pa = phi_edges[j];
-          const double pb = phi_edges[j + 1];
-          const QuadratureResult p = integrate_2d(
-              [&](double z, double phi) { return f.pdf(cell_direction(z, phi), wo); }, z_edges[i], z_edges[i + 1],
-              [pa](double) { return pa; }, [pb](double) { return pb; }, q, inner);
-          r.integration_converged = r.integration_converged && p.converged;
-          probability += p.value;
-        }
-      }
-      r.expected[static_cast<std::size_t>(row) * r.cols + col] = n * probability;
+      const CellIntegral c = cell_integral(f, wo, {z0, z1, phi0, phi1}, {z_s, phi_s}, q);
+      r.integration_converged = r.integration_converged && c.converged;
+      r.expected[static_cast<std::size_t>(row) * r.cols + col] = n * c.value;
     }
   }
   r.expected_total = std::accumulate(r.expected.begin(), r.expected.end(), 0.0);

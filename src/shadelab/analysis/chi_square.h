@@ -11,7 +11,8 @@
 //   sum (O - E)^2 / E over the groups, with groups - 1 degrees of freedom; the p-value is Q(dof/2, stat/2).
 //   A sample in a cell whose expected count is 0, or a non-finite sampled direction, makes the p-value 0.
 // - regularized_gamma_p / _q are the regularized lower / upper incomplete gamma functions P(a, x), Q(a, x)
-//   for a > 0, x >= 0 (series for x < a + 1, continued fraction otherwise), about 1e-14 relative.
+//   for a > 0, x >= 0 (series for x < a + 1, continued fraction otherwise), about 1e-14 relative for
+//   small a and a few 1e-13 for a in the hundreds (the prefactor goes through lgamma(a)); NaN for a <= 0.
 // - sidak_significance(alpha, k) = 1 - (1 - alpha)^(1/k): the per-test level that keeps the family-wise
 //   false rejection rate of k independent tests at alpha.
 // - sample_consistency(f, wo, M) draws M samples and reports the largest relative differences between

@@ -295,7 +295,22 @@ namespace {
 class PolarCoordinates {
  public:
   PolarCoordinates(const DirectionFunction& g, const Vec3& axis)
-      : m_g(g), m_axis(usable_axis(axis)), m_frame(Frame::from_normal(m_axis)) {}
+      : m_g(g), m_axis(usable_axis(axis)), m_frame(zenith_frame(m_axis)) {}
+
+  // A frame about the axis whose phi' = 0 points along the sphere towards +Z (and phi' = pi towards the
+  // horizon): lobes stretched by the reflection Jacobian at grazing angles are long in that vertical plane
+  // and very thin across it, and the inner integrals along them peak sharply at phi' = 0 and pi, which are
+  // therefore made breakpoints of the outer integral.
+  static Frame zenith_frame(const Vec3& c) {
+    const Vec3 up = Vec3{0.0, 0.0, 1.0} - c * c.z;
+    const double len = length(up);
+    if (!(len > 1e-9)) return Frame::from_normal(c);
+    Frame f;
+    f.n = c;
+    f.s = up / len;
+    f.t = cross(c, f.s);
+    return f;
+  }
 
   // An axis closer to the horizon than |z| = 0.01 is tilted to |z| = 0.01 at the same azimuth: about an axis
   // at height z the horizon bound theta_h(phi) swings from ~z to ~pi - z within ~z radians of phi, a feature
@@ -332,7 +347,9 @@ class PolarCoordinates {
     const BoundFunction antipode = [](double) { return pi; };
     // The part of the semicircle next to the axis is on the axis' side of the horizon.
     const bool near = upper == (b_coef > 0.0);
-    return integrate_2d_vector(integrand, dim, 0.0, two_pi, near ? zero : horizon, near ? horizon : antipode, outer,
+    QuadratureOptions o = outer;
+    o.initial_intervals = std::max(4, (outer.initial_intervals + 3) / 4 * 4);  // breakpoints at 0, pi/2, pi, 3pi/2
+    return integrate_2d_vector(integrand, dim, 0.0, two_pi, near ? zero : horizon, near ? horizon : antipode, o,
                                inner);
   }
 

@@ -22,6 +22,9 @@
 //   sphere, in polar coordinates (theta', phi') about a unit axis: the outer integral runs over phi' in
 //   [0, 2 pi] and the inner one over theta' from the axis to the horizon (or from the horizon to the
 //   antipode), so the horizon is always an integration boundary and a peak at the axis sits at an endpoint.
+//   Azimuth phi' = 0 points from the axis towards +Z and phi' = pi towards the horizon; the outer integral
+//   starts with breakpoints at multiples of pi/2 (initial_intervals is raised to a multiple of 4), so the
+//   thin lobes that reflection makes at grazing angles, long in that vertical plane, sit at breakpoints.
 //   Put the axis on the integrand's peak. An axis closer to the horizon than |z| = 0.01 is tilted to
 //   |z| = 0.01 at the same azimuth (about an axis on the horizon the bounds would jump); a zero axis is +Z. For the
 //   sphere the two halves share the tolerance on the total; integrate_sphere takes one axis per half.

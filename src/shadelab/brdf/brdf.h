@@ -40,6 +40,10 @@ class Brdf {
   // True when f(wi, wo) == f(wo, wi) for every pair. Some published forms are not reciprocal by design
   // (the original Phong and Blinn-Phong, which divide by N.L; wrapped diffuse with w > 0).
   virtual bool is_reciprocal() const { return true; }
+
+  // The albedo of the model's Lambertian (view-independent) part, pi times its constant f: what a game
+  // multiplies by diffuse irradiance / pi. Black for a model without one.
+  virtual Rgb diffuse_albedo() const { return {}; }
 };
 
 using BrdfPtr = std::unique_ptr<const Brdf>;

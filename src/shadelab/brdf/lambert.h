@@ -12,6 +12,7 @@ class Lambert final : public Brdf {
   Rgb eval(const Vec3& wi, const Vec3& wo) const override;
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
+  Rgb diffuse_albedo() const override { return m_kd; }
 
  private:
   Rgb m_kd;

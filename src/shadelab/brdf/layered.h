@@ -6,6 +6,7 @@
 #pragma once
 
 #include "shadelab/brdf/brdf.h"
+#include "shadelab/core/constants.h"
 
 namespace shadelab {
 
@@ -14,6 +15,7 @@ class LayeredBrdf : public Brdf {
   Rgb eval(const Vec3& wi, const Vec3& wo) const final;
   double pdf(const Vec3& wi, const Vec3& wo) const final;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const final;
+  Rgb diffuse_albedo() const final { return m_diffuse * pi; }  // pi x the constant diffuse f
 
  protected:
   // diffuse: the constant diffuse BRDF value (kd/pi for normalized models). diffuse_probability: p_d.

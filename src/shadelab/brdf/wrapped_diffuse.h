@@ -22,6 +22,8 @@ class WrappedDiffuse final : public Brdf {
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
   bool is_reciprocal() const override { return m_w == 0.0 || m_kd.is_black(); }
+  Rgb diffuse_albedo() const override { return m_kd; }  // the wrap itself is applied by SH band factors
+  double wrap() const { return m_w; }
 
  private:
   Rgb m_kd;

@@ -25,6 +25,8 @@ class EnvironmentLight {
 
   bool has_light() const { return m_active; }
   Rgb radiance(const Vec3& w) const;
+  // Everything but the sky's sun disk (a game renders the sun as a directional light).
+  Rgb radiance_without_sun(const Vec3& w) const { return m_active ? base_radiance(w) : Rgb{}; }
 
   struct Sample {
     Vec3 wi;

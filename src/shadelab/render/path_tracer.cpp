@@ -14,6 +14,7 @@
 #include "shadelab/core/frame.h"
 #include "shadelab/render/accel.h"
 #include "shadelab/render/env_light.h"
+#include "shadelab/render/materials.h"
 #include "shadelab/sampling/rng.h"
 #include "shadelab/sampling/warp.h"
 
@@ -27,14 +28,6 @@ double power_heuristic(double pa, double pb) {
   const double b = pb * pb;
   return a + b > 0.0 ? a / (a + b) : 0.0;
 }
-
-struct MaterialRuntime {
-  const ModelInfo* info = nullptr;
-  std::optional<ParamValues> base;
-  std::shared_ptr<const Brdf> brdf;
-  bool textured = false;
-  bool ks_is_f0 = false;  // cook-torrance with Schlick: the specular texture drives f0
-};
 
 struct LightRef {
   enum class Type { directional, point, spot, sphere_light, emissive_sphere, quad, disk, environment } type;
@@ -86,14 +79,13 @@ double sphere_distance(const Vec3& p, const Vec3& w, const Vec3& center, double 
 class Integrator {
  public:
   Integrator(const Scene& scene, SamplingMode mode, int max_depth)
-      : m_scene(scene), m_mode(mode), m_max_depth(max_depth), m_accel(scene), m_env(scene), m_id(next_id()) {}
+      : m_scene(scene), m_mode(mode), m_max_depth(max_depth), m_accel(scene), m_env(scene) {}
 
   Result<bool> prepare();
   Rgb li(Ray ray, Pcg32& rng, Counters& counters, FirstHit* first) const;
   const Accelerator& accel() const { return m_accel; }
 
  private:
-  const Brdf* material_brdf(int material, Vec2 uv, BrdfPtr& holder) const;
   LightSample sample_light(const LightRef& l, const Vec3& p, Vec2 u, double u_extra) const;
   double light_pdf(const LightRef& l, const Vec3& p, const Vec3& wi, const Hit* hit) const;
   Rgb emitted(const Hit& hit, const Vec3& wo_world) const;
@@ -104,44 +96,14 @@ class Integrator {
   int m_max_depth;
   Accelerator m_accel;
   EnvironmentLight m_env;
-  std::vector<MaterialRuntime> m_materials;
+  MaterialSet m_materials;
   std::vector<LightRef> m_lights;
   std::vector<int> m_sphere_shape_light, m_quad_light, m_disk_light;  // shape index -> light index or -1
   int m_env_light = -1;
-  std::uint64_t m_id;  // unique per integrator, for per-thread caches
-  static std::uint64_t next_id() {
-    static std::atomic<std::uint64_t> counter{0};
-    return ++counter;
-  }
 };
 
 Result<bool> Integrator::prepare() {
-  for (const Material& m : m_scene.materials) {
-    MaterialRuntime rt;
-    if (!m.model.empty()) {
-      rt.info = find_brdf_model(m.model);
-      if (rt.info == nullptr) return make_error("material '" + m.name + "': unknown model '" + m.model + "'");
-      auto values = parse_params(rt.info->name, rt.info->params, m.params);
-      if (!values) return make_error("material '" + m.name + "': " + values.error().message);
-      rt.base = std::move(values).value();
-      if (m.brdf) {
-        rt.brdf = m.brdf;
-      } else {
-        auto b = rt.info->create(*rt.base);
-        if (!b) return make_error("material '" + m.name + "': " + b.error().message);
-        rt.brdf = std::shared_ptr<const Brdf>(std::move(b).value());
-      }
-      rt.textured = m.textured();
-      auto has = [&](const char* name) {
-        return std::any_of(rt.info->params.begin(), rt.info->params.end(), [&](const ParamSpec& s) { return s.name == name; });
-      };
-      if (m.kd_texture >= 0 && !has("kd")) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameter kd for its kd texture");
-      if (m.gloss_texture >= 0 && !has("n")) return make_error("material '" + m.name + "': model '" + m.model + "' has no exponent n for its gloss texture");
-      rt.ks_is_f0 = m.model == "cook-torrance" && rt.base->choice("f") == "schlick";
-      if (m.ks_texture >= 0 && !rt.ks_is_f0 && !has("ks")) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameter ks for its ks texture");
-    }
-    m_materials.push_back(std::move(rt));
-  }
+  if (auto ok = m_materials.prepare(m_scene); !ok) return ok.error();
   for (std::size_t i = 0; i < m_scene.lights.size(); ++i) {
     const auto& l = m_scene.lights[i];
     const int idx = static_cast<int>(i);
@@ -179,42 +141,6 @@ Result<bool> Integrator::prepare() {
     m_lights.push_back({LightRef::Type::environment, 0});
   }
   return true;
-}
-
-const Brdf* Integrator::material_brdf(int material, Vec2 uv, BrdfPtr& holder) const {
-  if (material < 0) return nullptr;
-  const MaterialRuntime& rt = m_materials[static_cast<std::size_t>(material)];
-  if (!rt.textured || rt.info == nullptr) return rt.brdf.get();
-  const Material& m = m_scene.materials[static_cast<std::size_t>(material)];
-  uv = {uv.x * m.uv_scale.x, uv.y * m.uv_scale.y};  // texture tiling
-  // A per-thread working copy of the material's parameters, so a textured hit only overwrites the numbers
-  // the textures drive instead of copying the whole parameter set.
-  thread_local std::vector<std::optional<ParamValues>> scratch;
-  thread_local std::uint64_t scratch_owner = 0;
-  if (scratch_owner != m_id) {  // another integrator (scene) used this thread before
-    scratch.clear();
-    scratch_owner = m_id;
-  }
-  if (scratch.size() <= static_cast<std::size_t>(material)) scratch.resize(static_cast<std::size_t>(material) + 1);
-  auto& slot = scratch[static_cast<std::size_t>(material)];
-  if (!slot) slot = *rt.base;
-  ParamValues& v = *slot;
-  if (m.kd_texture >= 0) {
-    const Rgb c = sample_texture(m_scene.textures[static_cast<std::size_t>(m.kd_texture)], uv);
-    v.set_numbers("kd", {c.r, c.g, c.b});
-  }
-  if (m.ks_texture >= 0) {
-    const Rgb c = sample_texture(m_scene.textures[static_cast<std::size_t>(m.ks_texture)], uv);
-    v.set_numbers(rt.ks_is_f0 ? "f0" : "ks", {c.r, c.g, c.b});
-  }
-  if (m.gloss_texture >= 0) {
-    const double g = sample_texture(m_scene.textures[static_cast<std::size_t>(m.gloss_texture)], uv).r;
-    v.set_numbers("n", {m.gloss_encoding.exponent_from_gloss(g)});  // the zoo's logarithmic gloss encoding
-  }
-  auto b = rt.info->create(v);
-  if (!b) return rt.brdf.get();  // validated at load; a texture cannot make it fail
-  holder = std::move(b).value();
-  return holder.get();
 }
 
 int Integrator::light_of_hit(const Hit& hit) const {
@@ -421,36 +347,12 @@ Rgb Integrator::li(Ray ray, Pcg32& rng, Counters& counters, FirstHit* first) con
     }
     if (vertex > m_max_depth || hit.kind == ShapeKind::sphere_light) break;
 
-    // Shading frame facing the viewer (two-sided surfaces).
-    Vec3 ng = hit.geometric_normal;
-    Vec3 ns = hit.shading_normal;
-    if (dot(ng, wo_world) < 0.0) {
-      ng = -ng;
-      ns = -ns;
-    }
-    if (dot(ns, wo_world) <= 0.0) ns = ng;  // interpolated normal facing away: fall back
-    const Material* material = hit.material >= 0 ? &m_scene.materials[static_cast<std::size_t>(hit.material)] : nullptr;
-    if (material != nullptr && material->normal_texture >= 0) {
-      const Vec2 uv{hit.uv.x * material->uv_scale.x, hit.uv.y * material->uv_scale.y};
-      const Rgb t = sample_texture(m_scene.textures[static_cast<std::size_t>(material->normal_texture)], uv);
-      Vec3 tangent = hit.dpdu - ns * dot(hit.dpdu, ns);
-      tangent = length(tangent) > 1e-12 ? normalize(tangent) : Frame::from_normal(ns).s;
-      const Vec3 bitangent = cross(ns, tangent);
-      const Vec3 nt = normalize(Vec3{2.0 * t.r - 1.0, 2.0 * t.g - 1.0, 2.0 * t.b - 1.0});
-      const Vec3 mapped = normalize(tangent * nt.x + bitangent * nt.y + ns * nt.z);
-      if (dot(mapped, wo_world) > 0.0) ns = mapped;
-    }
-    Vec3 tangent = hit.dpdu - ns * dot(hit.dpdu, ns);
-    Frame frame;
-    if (length(tangent) > 1e-9) {
-      frame.n = ns;
-      frame.s = normalize(tangent);
-      frame.t = cross(frame.n, frame.s);
-    } else {
-      frame = Frame::from_normal(ns);
-    }
+    const ShadingFrame sf = shading_frame(m_scene, hit, wo_world);
+    const Vec3& ng = sf.ng;
+    const Vec3& ns = sf.frame.n;
+    const Frame& frame = sf.frame;
     BrdfPtr holder;
-    const Brdf* brdf = material_brdf(hit.material, hit.uv, holder);
+    const Brdf* brdf = m_materials.brdf(hit.material, hit.uv, holder);
     if (brdf == nullptr) break;  // a purely emissive surface absorbs
     const Vec3 wo = frame.to_local(wo_world);
 

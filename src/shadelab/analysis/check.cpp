@@ -1,0 +1,187 @@
+#include "shadelab/analysis/check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+#include "shadelab/core/constants.h"
+
+namespace shadelab {
+
+namespace {
+
+constexpr double no_threshold = std::numeric_limits<double>::quiet_NaN();
+
+std::string num(double v, int precision = 6) {
+  std::ostringstream os;
+  os << std::setprecision(precision) << v;
+  return os.str();
+}
+
+std::string rgb(const Rgb& c, int precision = 10) {
+  return "(" + num(c.r, precision) + ", " + num(c.g, precision) + ", " + num(c.b, precision) + ")";
+}
+
+Vec3 view(double theta_deg) {
+  const double t = deg_to_rad(theta_deg);
+  return {std::sin(t), 0.0, std::cos(t)};
+}
+
+// The albedo at normal incidence, to well below the 1e-9 of the normalization check.
+AlbedoResult normal_albedo(const Brdf& f) {
+  AlbedoOptions o;
+  o.quadrature.rel_tol = 1e-11;
+  return directional_albedo(f, 0.0, o);
+}
+
+CheckItem report_normal_albedo(const Brdf& f, const std::string& why) {
+  const AlbedoResult a = normal_albedo(f);
+  return {"normalization", true, a.albedo.max_component(), no_threshold,
+          "albedo at normal incidence " + rgb(a.albedo) + " (" + why + ")"};
+}
+
+bool has_param(const ModelInfo& info, std::string_view name) {
+  return std::any_of(info.params.begin(), info.params.end(), [&](const ParamSpec& p) { return p.name == name; });
+}
+
+CheckItem normalization_item(const ModelInfo& info, const ParamAssignments& params, const Brdf& f,
+                             const CheckOptions& options) {
+  if (!has_param(info, "normalization") || !has_param(info, "ks")) {
+    return report_normal_albedo(f, "the model has no normalization parameter; reported only");
+  }
+  auto values = parse_params(info.name, info.params, params);
+  if (!values) return {"normalization", false, 0.0, no_threshold, values.error().message};
+  if (values->choice("normalization") != "exact") {
+    return report_normal_albedo(f, "normalization=" + values->choice("normalization") + "; reported only");
+  }
+  const Rgb ks = values->color("ks");
+  ParamAssignments specular_only = params;
+  if (has_param(info, "kd")) specular_only.emplace_back("kd", "0");
+  auto variant = make_brdf(info.name, specular_only);
+  if (!variant) return {"normalization", false, 0.0, options.normalization_tolerance, variant.error().message};
+  const AlbedoResult a = normal_albedo(**variant);
+  // Relative to the largest channel of ks, so that a zero channel must give a (near) zero albedo.
+  const double scale = ks.max_component();
+  double err = 0.0;
+  for (int c = 0; c < 3; ++c) err = std::max(err, std::abs(a.albedo[c] - ks[c]));
+  if (scale > 0.0) err /= scale;
+  return {"normalization", err <= options.normalization_tolerance, err, options.normalization_tolerance,
+          "kd=0 variant: albedo at normal incidence " + rgb(a.albedo, 13) + " vs ks " + rgb(ks, 13) +
+              (a.converged ? "" : " (quadrature did not converge)")};
+}
+
+std::string assignments_text(const ParamAssignments& params) {
+  std::string text;
+  for (const auto& [name, value] : params) text += (text.empty() ? "" : " ") + name + "=" + value;
+  return text;
+}
+
+}  // namespace
+
+bool CheckReport::passed() const {
+  return std::all_of(items.begin(), items.end(), [](const CheckItem& i) { return i.passed; });
+}
+
+const CheckItem* CheckReport::find(std::string_view name) const {
+  for (const auto& i : items) {
+    if (i.name == name) return &i;
+  }
+  return nullptr;
+}
+
+CheckReport check_brdf(const Brdf& f, const CheckOptions& options) {
+  CheckReport report;
+  report.items.push_back(report_normal_albedo(f, "no model information; reported only"));
+
+  // Energy.
+  const AlbedoMax m = max_albedo(f, options.energy);
+  const double energy_limit = 1.0 + options.energy_tolerance;
+  report.items.push_back({"energy", m.value <= energy_limit, m.value, energy_limit,
+                          "max albedo " + num(m.value, 10) + " at theta_o = " + num(m.theta_deg, 6) + " deg, " +
+                              rgb(m.albedo, 8) + (m.value <= energy_limit ? "" : ": exceeds 1, not energy conserving") +
+                              (m.converged ? "" : " (some albedo integrals did not converge)")});
+
+  // Reciprocity.
+  const ReciprocityResult rec = reciprocity_error(f);
+  const std::string worst = " (worst pair of " + std::to_string(rec.pairs) + ": f(a,b) " + rgb(rec.f_ab, 8) +
+                            ", f(b,a) " + rgb(rec.f_ba, 8) + ")";
+  if (f.is_reciprocal()) {
+    report.items.push_back({"reciprocity", rec.max_relative_error <= options.reciprocity_tolerance,
+                            rec.max_relative_error, options.reciprocity_tolerance,
+                            "max relative |f(a,b) - f(b,a)| = " + num(rec.max_relative_error, 3) + worst});
+  } else {
+    const bool measurable = rec.max_relative_error > options.non_reciprocal_minimum;
+    report.items.push_back({"reciprocity", measurable, rec.max_relative_error, options.non_reciprocal_minimum,
+                            std::string(measurable ? "non-reciprocal by design (is_reciprocal() is false), "
+                                                   : "claims to be non-reciprocal but ") +
+                                "measured max relative |f(a,b) - f(b,a)| = " + num(rec.max_relative_error, 3) +
+                                (measurable ? " > " : " <= ") + num(options.non_reciprocal_minimum, 3)});
+  }
+
+  // pdf integral and sample consistency over the check angles.
+  double worst_integral = 0.0;
+  double worst_integral_theta = 0.0;
+  double worst_integral_value = 1.0;
+  double worst_sample = 0.0;
+  std::uint64_t below = 0;
+  std::uint64_t bad_below = 0;
+  std::uint64_t non_finite = 0;
+  std::uint64_t zero_pdf = 0;
+  std::uint64_t samples = 0;
+  for (double t : options.angles_deg) {
+    const QuadratureResult p = pdf_integral(f, view(t));
+    const double e = std::abs(p.value - 1.0);
+    if (!(e <= worst_integral)) {
+      worst_integral = std::isnan(e) ? std::numeric_limits<double>::infinity() : e;
+      worst_integral_theta = t;
+      worst_integral_value = p.value;
+    }
+    const SampleConsistency s = sample_consistency(f, view(t), options.consistency_samples);
+    worst_sample = std::max({worst_sample, s.max_pdf_error, s.max_weight_error});
+    below += s.below_horizon;
+    bad_below += s.nonzero_weight_below_horizon;
+    non_finite += s.non_finite;
+    zero_pdf += s.zero_pdf;
+    samples += s.samples;
+  }
+  report.items.push_back({"pdf integral", worst_integral <= options.pdf_integral_tolerance, worst_integral,
+                          options.pdf_integral_tolerance,
+                          "max |integral of pdf over the sphere - 1| over the check angles; worst " +
+                              num(worst_integral_value, 12) + " at theta_o = " + num(worst_integral_theta) + " deg"});
+  const bool samples_ok = worst_sample <= options.weight_tolerance && bad_below == 0 && non_finite == 0;
+  report.items.push_back({"sample weights", samples_ok, worst_sample, options.weight_tolerance,
+                          "max relative error of sample().pdf vs pdf() and of weight vs f cos / pdf over " +
+                              std::to_string(samples) + " samples; " + std::to_string(below) +
+                              " below the horizon (" + std::to_string(bad_below) + " with non-zero weight), " +
+                              std::to_string(zero_pdf) + " with pdf 0, " + std::to_string(non_finite) +
+                              " non-finite"});
+
+  // Chi-square, Sidak-corrected over the angles.
+  const double level = sidak_significance(options.alpha, static_cast<int>(options.angles_deg.size()));
+  for (double t : options.angles_deg) {
+    const ChiSquareResult c = chi_square_test(f, view(t), options.chi_square);
+    std::string detail = "statistic " + num(c.statistic) + ", dof " + std::to_string(c.degrees_of_freedom) + ", " +
+                         std::to_string(c.samples) + " samples, " + std::to_string(c.pooled_cells) +
+                         " cells pooled, level " + num(level, 4) + " (alpha " + num(options.alpha) + " Sidak-corrected for " +
+                         std::to_string(options.angles_deg.size()) + " angles)";
+    if (c.invalid_samples > 0) detail += ", " + std::to_string(c.invalid_samples) + " non-finite samples";
+    if (c.unexpected_samples > 0) detail += ", " + std::to_string(c.unexpected_samples) + " samples where the pdf is 0";
+    report.items.push_back({"chi-square theta=" + num(t), c.p_value >= level, c.p_value, level, detail});
+  }
+  return report;
+}
+
+Result<CheckReport> check_brdf(std::string_view model, const ParamAssignments& params, const CheckOptions& options) {
+  auto f = make_brdf(model, params);
+  if (!f) return f.error();
+  const ModelInfo* info = find_brdf_model(model);
+  CheckReport report = check_brdf(**f, options);
+  report.model = std::string(model);
+  report.params = assignments_text(params);
+  report.items.front() = normalization_item(*info, params, **f, options);
+  return report;
+}
+
+}  // namespace shadelab

@@ -1,0 +1,275 @@
+#include "shadelab/render/game_renderer.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#include "shadelab/core/constants.h"
+#include "shadelab/envmap/irradiance.h"
+#include "shadelab/envmap/prefilter.h"
+#include "shadelab/envmap/sh.h"
+#include "shadelab/brdf/microfacet.h"
+#include "shadelab/brdf/wrapped_diffuse.h"
+#include "shadelab/render/accel.h"
+#include "shadelab/render/env_light.h"
+#include "shadelab/render/materials.h"
+#include "shadelab/sampling/rng.h"
+
+namespace shadelab {
+
+namespace {
+
+constexpr int kAlbedoBins = 32;
+
+// The Phong exponent whose lobe matches a material's specular lobe, for the prefiltered-map level:
+// Blinn-Phong-like lobes (N.H)^n have n/4; Beckmann roughness m and Ward's alpha convert by n = 2/m^2 - 2.
+double phong_exponent(const std::string& model, const ParamValues& p) {
+  if (model == "phong" || model == "phong-modified") return p.scalar("n");
+  if (model == "blinn-phong" || model == "blinn-phong-modified" || model == "minimalist-cook-torrance") {
+    return phong_exponent_from_blinn_phong(p.scalar("n"));
+  }
+  if (model == "cook-torrance") {
+    const double n = p.is_set("n") ? p.scalar("n") : exponent_from_beckmann_m(p.scalar("m"));
+    return phong_exponent_from_blinn_phong(n);
+  }
+  if (model == "ward") return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(p.scalar("alpha")));
+  if (model == "ward-anisotropic") {
+    const double a = 0.5 * (p.scalar("alpha_x") + p.scalar("alpha_y"));
+    return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(a));
+  }
+  if (model == "lafortune") return p.lobes("lobes").front()[3];
+  return 0.0;  // no specular lobe
+}
+
+class GameShader {
+ public:
+  GameShader(const Scene& scene, const GameOptions& options)
+      : m_scene(scene), m_options(options), m_accel(scene), m_env(scene) {}
+
+  Result<bool> prepare() {
+    if (auto ok = m_materials.prepare(m_scene); !ok) return ok.error();
+    // Punctual lights as the engine sees them: radiometric E_perp here, the game colour is E_perp / pi.
+    for (const auto& l : m_scene.lights) {
+      if (std::holds_alternative<DirectionalLight>(l) || std::holds_alternative<PointLight>(l) ||
+          std::holds_alternative<SpotLight>(l)) {
+        m_punctual.push_back(l);
+      } else if (const auto* s = std::get_if<SphereLight>(&l)) {
+        // Point-light limit of a sphere light: I = pi L r0^2 (zoo article).
+        m_punctual.push_back(PointLight{s->center, sphere_light_intensity(s->radiance, s->radius)});
+      }
+    }
+    if (m_scene.environment.kind == Environment::Kind::sky) {
+      m_punctual.push_back(DirectionalLight{m_scene.environment.sky.sun_direction, m_scene.environment.sky.sun_irradiance});
+    }
+    // The baked environment: SH9, irradiance cube and prefiltered specular chain.
+    if (m_env.has_light()) {
+      const int n = m_options.environment_size;
+      CubeMap cube(n);
+      for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < n; ++y)
+          for (int x = 0; x < n; ++x) cube.set(f, x, y, m_env.radiance_without_sun(texel_direction(f, x, y, n)));
+      m_sh = project_sh9(cube);
+      if (m_options.diffuse == GameAmbient::irradiance_map) m_irradiance = irradiance_cube(cube, 32, RadianceUnits::game);
+      if (m_options.specular_ambient) {
+        PrefilterOptions po;
+        po.size = m_options.specular_size;
+        auto chain = prefilter_specular(cube, po);
+        if (!chain) return chain.error();
+        m_specular = std::move(chain).value();
+      }
+    }
+    // Per material: Phong exponent and the specular lobe's directional albedo over cos(theta_o).
+    for (std::size_t i = 0; i < m_scene.materials.size(); ++i) {
+      const Material& m = m_scene.materials[i];
+      MaterialInfo info;
+      if (!m.model.empty()) {
+        const ModelInfo* model = find_brdf_model(m.model);
+        auto values = parse_params(model->name, model->params, m.params);
+        if (!values) return values.error();
+        info.exponent = phong_exponent(m.model, *values);
+        info.blinn_like = m.model.find("blinn") != std::string::npos || m.model == "minimalist-cook-torrance" ||
+                          m.model == "cook-torrance";
+        BrdfPtr holder;
+        const Brdf* f = m_materials.brdf(static_cast<int>(i), {0.5, 0.5}, holder);
+        if (const auto* w = dynamic_cast<const WrappedDiffuse*>(f)) info.wrap = w->wrap();
+        for (int b = 0; b < kAlbedoBins; ++b) {
+          const double c = (b + 0.5) / kAlbedoBins;
+          const Vec3 wo{std::sqrt(1.0 - c * c), 0.0, c};
+          Pcg32 rng(1234, static_cast<std::uint64_t>(b));
+          Rgb sum;
+          const int samples = 4096;
+          for (int s = 0; s < samples; ++s) {
+            sum += f->sample(wo, {rng.next_double(), rng.next_double()}, rng.next_double()).weight;
+          }
+          const Rgb spec = sum / samples - f->diffuse_albedo();
+          info.specular_albedo[static_cast<std::size_t>(b)] = {std::max(0.0, spec.r), std::max(0.0, spec.g), std::max(0.0, spec.b)};
+        }
+      }
+      m_info.push_back(info);
+    }
+    return true;
+  }
+
+  Rgb shade(const Ray& ray) const {
+    Hit hit;
+    if (!m_accel.intersect(ray, hit)) return m_env.radiance(ray.direction);
+    const Vec3 wo_world = -ray.direction;
+    Rgb l;
+    if (hit.kind == ShapeKind::sphere_light) return std::get<SphereLight>(m_scene.lights[static_cast<std::size_t>(hit.index)]).radiance;
+    if (hit.material >= 0) {
+      const Rgb& e = m_scene.materials[static_cast<std::size_t>(hit.material)].emission;
+      if (!e.is_black() && dot(hit.geometric_normal, wo_world) > 0.0) l += e;
+    }
+    const ShadingFrame sf = shading_frame(m_scene, hit, wo_world);
+    BrdfPtr holder;
+    const Brdf* f = m_materials.brdf(hit.material, hit.uv, holder);
+    if (f == nullptr) return l;
+    const Vec3 wo = sf.frame.to_local(wo_world);
+    const MaterialInfo& info = m_info[static_cast<std::size_t>(hit.material)];
+    if (m_options.punctual) {
+      for (const auto& light : m_punctual) {
+        const LightIncidence in = std::visit(
+            [&](const auto& x) -> LightIncidence {
+              using T = std::decay_t<decltype(x)>;
+              if constexpr (std::is_same_v<T, DirectionalLight> || std::is_same_v<T, PointLight> || std::is_same_v<T, SpotLight>) {
+                return incident(x, hit.position);
+              } else {
+                return {};
+              }
+            },
+            light);
+        if (in.irradiance_perp.is_black() || dot(in.wi, sf.ng) <= 0.0) continue;
+        const Vec3 wi = sf.frame.to_local(in.wi);
+        if (wi.z <= 0.0) continue;
+        if (m_options.shadows) {
+          const Ray shadow{offset_origin(hit.position, sf.ng, in.wi), in.wi,
+                           std::isfinite(in.distance) ? in.distance * (1.0 - 2e-3) : in.distance};
+          if (m_accel.occluded(shadow)) continue;
+        }
+        const Rgb colour_game = in.irradiance_perp * inv_pi;  // the game unit: E_perp = pi x colour
+        // The game shading equation: L = pi f c cos (drop_pi: the bug of forgetting the pi).
+        const double unit = m_options.drop_pi ? 1.0 : pi;
+        l += f->eval(wi, wo) * colour_game * (unit * wi.z);
+      }
+    }
+    if (m_env.has_light()) {
+      const Vec3 n = sf.frame.n;
+      if (m_options.diffuse != GameAmbient::none) {
+        Rgb e_over_pi;
+        if (m_options.diffuse == GameAmbient::irradiance_map) {
+          e_over_pi = m_irradiance.sample(n);
+        } else {
+          e_over_pi = sh9_evaluate(m_sh, n, info.wrap > 0.0 ? wrapped_band_factors_over_pi(info.wrap) : cosine_band_factors_over_pi);
+        }
+        l += f->diffuse_albedo() * e_over_pi;
+      }
+      if (m_options.specular_ambient && info.exponent > 0.0 && !m_specular.levels.empty()) {
+        double n_phong = info.exponent;
+        const Material& m = m_scene.materials[static_cast<std::size_t>(hit.material)];
+        if (m.gloss_texture >= 0) {
+          const Vec2 uv{hit.uv.x * m.uv_scale.x, hit.uv.y * m.uv_scale.y};
+          const double g = sample_texture(m_scene.textures[static_cast<std::size_t>(m.gloss_texture)], uv).r;
+          const double n_tex = m.gloss_encoding.exponent_from_gloss(g);
+          n_phong = info.blinn_like ? phong_exponent_from_blinn_phong(n_tex) : n_tex;
+        }
+        const Vec3 r = reflect(wo_world, n);
+        const double c = std::clamp(wo.z, 0.0, 1.0);
+        const double pos = std::clamp(c * kAlbedoBins - 0.5, 0.0, kAlbedoBins - 1.0);
+        const auto b0 = static_cast<std::size_t>(pos);
+        const std::size_t b1 = std::min<std::size_t>(b0 + 1, kAlbedoBins - 1);
+        const double t = pos - static_cast<double>(b0);
+        const Rgb rho_s = info.specular_albedo[b0] * (1.0 - t) + info.specular_albedo[b1] * t;
+        l += rho_s * prefiltered(r, n_phong);
+      }
+    }
+    return l;
+  }
+
+ private:
+  struct MaterialInfo {
+    double exponent = 0.0;
+    bool blinn_like = false;
+    double wrap = 0.0;
+    std::array<Rgb, kAlbedoBins> specular_albedo{};
+  };
+
+  // The prefiltered radiance for a Phong exponent: level (M-1)(1 - (log2 n - bias)/scale), linear between
+  // levels (prefilter.h's gloss mapping inverted).
+  Rgb prefiltered(const Vec3& r, double n) const {
+    const auto levels = static_cast<int>(m_specular.levels.size());
+    const double level = std::clamp((levels - 1) * (1.0 - (std::log2(std::max(n, 1e-9)) - 1.0) / 10.0), 0.0, levels - 1.0);
+    const int i0 = static_cast<int>(level);
+    const int i1 = std::min(i0 + 1, levels - 1);
+    const double t = level - i0;
+    return m_specular.levels[static_cast<std::size_t>(i0)].sample(r) * (1.0 - t) +
+           m_specular.levels[static_cast<std::size_t>(i1)].sample(r) * t;
+  }
+
+  const Scene& m_scene;
+  GameOptions m_options;
+  Accelerator m_accel;
+  EnvironmentLight m_env;
+  MaterialSet m_materials;
+  std::vector<SceneLight> m_punctual;
+  Sh9 m_sh;
+  CubeMap m_irradiance;
+  PrefilteredCube m_specular;
+  std::vector<MaterialInfo> m_info;
+};
+
+}  // namespace
+
+Result<RenderResult> render_game(const Scene& scene, const GameOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  GameShader shader(scene, options);
+  if (auto ok = shader.prepare(); !ok) return ok.error();
+  const int w = scene.camera.width;
+  const int h = scene.camera.height;
+  const Vec3 forward = normalize(scene.camera.look_at - scene.camera.position);
+  const Vec3 right = normalize(cross(forward, scene.camera.up));
+  const Vec3 up = cross(right, forward);
+  const double tan_half = std::tan(0.5 * deg_to_rad(scene.camera.vfov_deg));
+  const double aspect = static_cast<double>(w) / h;
+  const int spp_side = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, options.spp)))));
+  RenderResult result;
+  result.beauty = Image(w, h);
+  const int threads = options.threads >= 0 ? options.threads : scene.settings.threads;
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
+      for (int y = r.rows().begin(); y != r.rows().end(); ++y) {
+        for (int x = r.cols().begin(); x != r.cols().end(); ++x) {
+          Rgb sum;
+          // Stratified, deterministic antialiasing: spp_side^2 sub-pixel positions.
+          for (int j = 0; j < spp_side; ++j) {
+            for (int i = 0; i < spp_side; ++i) {
+              const double px = x + (i + 0.5) / spp_side;
+              const double py = y + (j + 0.5) / spp_side;
+              const double sx = (2.0 * px / w - 1.0) * tan_half * aspect;
+              const double sy = (1.0 - 2.0 * py / h) * tan_half;
+              sum += shader.shade(Ray{scene.camera.position, normalize(forward + right * sx + up * sy)});
+            }
+          }
+          result.beauty.set(x, y, sum / (spp_side * spp_side));
+        }
+      }
+    });
+  });
+  result.stats.spp_done = spp_side * spp_side;
+  result.stats.camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(spp_side * spp_side);
+  result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+Result<Rgb> game_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, const GameOptions& options) {
+  GameShader shader(scene, options);
+  if (auto ok = shader.prepare(); !ok) return ok.error();
+  return shader.shade(Ray{origin, normalize(direction)});
+}
+
+}  // namespace shadelab

@@ -1,0 +1,45 @@
+// shadelab game shading: the same scene shaded as a game engine shades it, per pixel, with no light
+// transport beyond one bounce of punctual light and baked ambient, calling the same BRDF code as the path
+// tracer.
+//
+// At the first hit of each camera ray (Lagarde 2012, "PI or not to PI"; the zoo article's shader form):
+//   punctual lights, in game units c = E_perp / pi:   L += pi f(wi, wo) c cos(theta_i)   [x shadow ray]
+//     sphere lights as their point-light limit I = pi L r0^2 (zoo article), the sky's sun as a directional
+//     light of its irradiance;
+//   diffuse ambient:   L += rho_d * (E / pi)(n) from SH9 (or the irradiance cube map) baked from the scene's
+//     environment (hemisphere lights included, the sun excluded), with the wrapped band factors for
+//     wrapped-diffuse materials;
+//   specular ambient:  L += rho_s(wo) * prefiltered(R, n_phong), the prefiltered cube's level for the
+//     material's lobe width and the specular lobe's directional albedo rho_s (a per-material table over
+//     cos(theta_o), from the BRDF's own sampler, fixed seed);
+//   emission of the surface seen; the environment seen directly.
+// No interreflection, no area lights besides the point limit of sphere lights: these are the approximations
+// `shadelab report` measures against the reference.
+// `drop_pi` is a debug switch that forgets the pi of the game unit (L += f c cos): the tests use it to show
+// that the agreement test can fail.
+#pragma once
+
+#include "shadelab/render/path_tracer.h"
+
+namespace shadelab {
+
+enum class GameAmbient { sh9, irradiance_map, none };
+
+struct GameOptions {
+  bool shadows = true;
+  GameAmbient diffuse = GameAmbient::sh9;
+  bool specular_ambient = true;
+  bool punctual = true;
+  bool drop_pi = false;   // debug: forget the pi of the game light unit
+  int spp = 4;            // antialiasing samples per pixel (stratified, deterministic)
+  int threads = -1;       // -1: the scene's
+  int environment_size = 64;  // face size the environment is baked at
+  int specular_size = 64;     // face size of the prefiltered cube's level 0
+};
+
+Result<RenderResult> render_game(const Scene& scene, const GameOptions& options = {});
+
+// The game-shaded radiance along one camera ray (for tests).
+Result<Rgb> game_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, const GameOptions& options = {});
+
+}  // namespace shadelab

@@ -1,0 +1,108 @@
+#include "shadelab/render/materials.h"
+
+#include <algorithm>
+
+namespace shadelab {
+
+Result<bool> MaterialSet::prepare(const Scene& scene) {
+  m_scene = &scene;
+  m_runtime.clear();
+  for (const Material& m : scene.materials) {
+    Runtime rt;
+    if (!m.model.empty()) {
+      rt.info = find_brdf_model(m.model);
+      if (rt.info == nullptr) return make_error("material '" + m.name + "': unknown model '" + m.model + "'");
+      auto values = parse_params(rt.info->name, rt.info->params, m.params);
+      if (!values) return make_error("material '" + m.name + "': " + values.error().message);
+      rt.base = std::move(values).value();
+      if (m.brdf) {
+        rt.brdf = m.brdf;
+      } else {
+        auto b = rt.info->create(*rt.base);
+        if (!b) return make_error("material '" + m.name + "': " + b.error().message);
+        rt.brdf = std::shared_ptr<const Brdf>(std::move(b).value());
+      }
+      rt.textured = m.textured();
+      auto has = [&](const char* name) {
+        return std::any_of(rt.info->params.begin(), rt.info->params.end(), [&](const ParamSpec& s) { return s.name == name; });
+      };
+      if (m.kd_texture >= 0 && !has("kd")) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameter kd for its kd texture");
+      if (m.gloss_texture >= 0 && !has("n")) return make_error("material '" + m.name + "': model '" + m.model + "' has no exponent n for its gloss texture");
+      rt.ks_is_f0 = m.model == "cook-torrance" && rt.base->choice("f") == "schlick";
+      if (m.ks_texture >= 0 && !rt.ks_is_f0 && !has("ks")) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameter ks for its ks texture");
+    } else if (m.brdf) {
+      rt.brdf = m.brdf;
+    }
+    m_runtime.push_back(std::move(rt));
+  }
+  return true;
+}
+
+const Brdf* MaterialSet::brdf(int material, Vec2 uv, BrdfPtr& holder) const {
+  if (material < 0) return nullptr;
+  const Runtime& rt = m_runtime[static_cast<std::size_t>(material)];
+  if (!rt.textured || rt.info == nullptr) return rt.brdf.get();
+  const Material& m = m_scene->materials[static_cast<std::size_t>(material)];
+  uv = {uv.x * m.uv_scale.x, uv.y * m.uv_scale.y};  // texture tiling
+  // A per-thread working copy of the material's parameters, so a textured hit only overwrites the numbers
+  // the textures drive instead of copying the whole parameter set.
+  thread_local std::vector<std::optional<ParamValues>> scratch;
+  thread_local std::uint64_t scratch_owner = 0;
+  if (scratch_owner != m_id) {  // another material set (scene) used this thread before
+    scratch.clear();
+    scratch_owner = m_id;
+  }
+  if (scratch.size() <= static_cast<std::size_t>(material)) scratch.resize(static_cast<std::size_t>(material) + 1);
+  auto& slot = scratch[static_cast<std::size_t>(material)];
+  if (!slot) slot = *rt.base;
+  ParamValues& v = *slot;
+  if (m.kd_texture >= 0) {
+    const Rgb c = sample_texture(m_scene->textures[static_cast<std::size_t>(m.kd_texture)], uv);
+    v.set_numbers("kd", {c.r, c.g, c.b});
+  }
+  if (m.ks_texture >= 0) {
+    const Rgb c = sample_texture(m_scene->textures[static_cast<std::size_t>(m.ks_texture)], uv);
+    v.set_numbers(rt.ks_is_f0 ? "f0" : "ks", {c.r, c.g, c.b});
+  }
+  if (m.gloss_texture >= 0) {
+    const double g = sample_texture(m_scene->textures[static_cast<std::size_t>(m.gloss_texture)], uv).r;
+    v.set_numbers("n", {m.gloss_encoding.exponent_from_gloss(g)});  // the zoo's logarithmic gloss encoding
+  }
+  auto b = rt.info->create(v);
+  if (!b) return rt.brdf.get();  // validated at load; a texture cannot make it fail
+  holder = std::move(b).value();
+  return holder.get();
+}
+
+ShadingFrame shading_frame(const Scene& scene, const Hit& hit, const Vec3& wo_world) {
+  Vec3 ng = hit.geometric_normal;
+  Vec3 ns = hit.shading_normal;
+  if (dot(ng, wo_world) < 0.0) {
+    ng = -ng;
+    ns = -ns;
+  }
+  if (dot(ns, wo_world) <= 0.0) ns = ng;  // interpolated normal facing away: fall back
+  const Material* material = hit.material >= 0 ? &scene.materials[static_cast<std::size_t>(hit.material)] : nullptr;
+  if (material != nullptr && material->normal_texture >= 0) {
+    const Vec2 uv{hit.uv.x * material->uv_scale.x, hit.uv.y * material->uv_scale.y};
+    const Rgb t = sample_texture(scene.textures[static_cast<std::size_t>(material->normal_texture)], uv);
+    Vec3 tangent = hit.dpdu - ns * dot(hit.dpdu, ns);
+    tangent = length(tangent) > 1e-12 ? normalize(tangent) : Frame::from_normal(ns).s;
+    const Vec3 bitangent = cross(ns, tangent);
+    const Vec3 nt = normalize(Vec3{2.0 * t.r - 1.0, 2.0 * t.g - 1.0, 2.0 * t.b - 1.0});
+    const Vec3 mapped = normalize(tangent * nt.x + bitangent * nt.y + ns * nt.z);
+    if (dot(mapped, wo_world) > 0.0) ns = mapped;
+  }
+  Vec3 tangent = hit.dpdu - ns * dot(hit.dpdu, ns);
+  Frame frame;
+  if (length(tangent) > 1e-9) {
+    frame.n = ns;
+    frame.s = normalize(tangent);
+    frame.t = cross(frame.n, frame.s);
+  } else {
+    frame = Frame::from_normal(ns);
+  }
+  return {frame, ng};
+}
+
+}  // namespace shadelab
