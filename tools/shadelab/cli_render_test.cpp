@@ -1,0 +1,77 @@
+// End-to-end tests of `shadelab render` (both modes) and `shadelab report`.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cli_run.h"
+#include "shadelab/image/image_io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using shadelab::testing::expect_usage_error;
+using shadelab::testing::json_of;
+using shadelab::testing::run;
+
+fs::path temp_dir() {
+  static const fs::path dir = [] {
+    fs::path d = fs::path(::testing::TempDir()) / "shadelab_cli_render";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+const std::string furnace = std::string(SHADELAB_SCENES_DIR) + "/furnace.json";
+
+TEST(CliRender, ReferenceAndGameModesWriteImages) {
+  for (const char* mode : {"reference", "game"}) {
+    const fs::path out = temp_dir() / (std::string(mode) + ".exr");
+    const auto j = json_of(run("render " + furnace + " --mode " + mode + " --spp 2 --out " + out.string() + " --aov --json"));
+    EXPECT_EQ(j["mode"], mode);
+    const auto img = shadelab::read_image(out);
+    ASSERT_TRUE(img.has_value()) << img.error().message;
+    EXPECT_GT(img->width, 0);
+    EXPECT_TRUE(fs::exists(temp_dir() / (std::string(mode) + ".png")));
+  }
+  EXPECT_TRUE(fs::exists(temp_dir() / "reference.normal.exr"));
+}
+
+TEST(CliRender, SameImageForAnyThreadCount) {
+  const fs::path a = temp_dir() / "t1.exr";
+  const fs::path b = temp_dir() / "t2.exr";
+  ASSERT_EQ(run("render " + furnace + " --spp 2 --threads 1 --no-png --out " + a.string()).code, 0);
+  ASSERT_EQ(run("render " + furnace + " --spp 2 --threads 2 --no-png --out " + b.string()).code, 0);
+  EXPECT_EQ(shadelab::read_image(a)->data, shadelab::read_image(b)->data);
+}
+
+TEST(CliRender, BadInput) {
+  expect_usage_error("render /nonexistent/scene.json", "/nonexistent/scene.json");
+  expect_usage_error("render " + furnace + " --mode cartoon", "--mode");
+  expect_usage_error("render " + furnace + " --spp 0", "--spp");
+  expect_usage_error("render " + furnace + " --out x.png", "--out");
+  expect_usage_error("render " + furnace + " --sampling random", "--sampling");
+  const fs::path bad = temp_dir() / "bad.json";
+  std::ofstream(bad) << R"({"shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": -2, "material": "x"}]})";
+  expect_usage_error("render " + bad.string(), "/shapes/0/radius");
+}
+
+TEST(CliReport, WritesAPageWithThreeLightings) {
+  const fs::path dir = temp_dir() / "report";
+  const auto j = json_of(run("report " + furnace + " --spp 2 --width 32 --out " + dir.string() + " --json"));
+  ASSERT_EQ(j["sections"].size(), 3u);
+  EXPECT_TRUE(fs::exists(dir / "index.html"));
+  EXPECT_TRUE(fs::exists(dir / "full_heatmap.png"));
+  std::ifstream f(dir / "index.html");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string html = ss.str();
+  EXPECT_NE(html.find("<table>"), std::string::npos);
+  EXPECT_NE(html.find("environment_game.png"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,234 @@
+// shadelab report SCENE [--out DIR] [--spp N]: renders the scene with the reference path tracer and with game
+// shading, in three lightings that isolate the approximations, compares them per material, and writes one
+// HTML page (DIR/index.html) with the images, heat maps and a table.
+//
+//   punctual:     only the punctual lights (and the sky's sun), direct light (reference depth 1): the game
+//                 shading equation should agree within noise;
+//   environment:  only the environment (sky without sun, HDRI, hemisphere lights), direct light: SH9 diffuse
+//                 and prefiltered specular against the exact integral;
+//   full:         the scene as given, reference at full depth: adds interreflection and area lights, which
+//                 game shading leaves out or approximates.
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+
+#include "cli_common.h"
+#include "progress.h"
+#include "shadelab/image/image_io.h"
+#include "shadelab/image/metrics.h"
+#include "shadelab/render/accel.h"
+#include "shadelab/render/film.h"
+#include "shadelab/render/game_renderer.h"
+#include "shadelab/scene/default_scene.h"
+#include "shadelab/scene/scene_json.h"
+
+namespace shadelab::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ReportOptions {
+  std::string scene;
+  std::string out = "report";
+  int spp = 64;
+  int width = 0;
+  bool json = false;
+};
+
+std::string html_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    switch (c) {
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '&': o += "&amp;"; break;
+      case '"': o += "&quot;"; break;
+      default: o += c;
+    }
+  }
+  return o;
+}
+
+Scene variant(const Scene& base, const std::string& kind) {
+  Scene s = base;
+  if (kind == "full") return s;
+  for (auto& m : s.materials) m.emission = {};  // emitters are neither punctual nor environment
+  std::vector<SceneLight> lights;
+  if (kind == "punctual") {
+    for (const auto& l : s.lights) {
+      if (!std::holds_alternative<HemisphereLight>(l)) lights.push_back(l);
+    }
+    if (s.environment.kind == Environment::Kind::sky) {
+      lights.push_back(DirectionalLight{s.environment.sky.sun_direction, s.environment.sky.sun_irradiance});
+    }
+    s.environment.kind = Environment::Kind::none;
+  } else {  // environment
+    for (const auto& l : s.lights) {
+      if (std::holds_alternative<HemisphereLight>(l)) lights.push_back(l);
+    }
+    s.environment.sky.sun_irradiance = {};
+  }
+  s.lights = lights;
+  s.settings.max_depth = 1;
+  return s;
+}
+
+// Per-pixel material index of the primary hit through each pixel's centre (-1: background).
+std::vector<int> material_ids(const Scene& s) {
+  const Accelerator accel(s);
+  const Vec3 forward = normalize(s.camera.look_at - s.camera.position);
+  const Vec3 right = normalize(cross(forward, s.camera.up));
+  const Vec3 up = cross(right, forward);
+  const double t = std::tan(0.5 * deg_to_rad(s.camera.vfov_deg));
+  const double aspect = static_cast<double>(s.camera.width) / s.camera.height;
+  std::vector<int> ids(static_cast<std::size_t>(s.camera.width) * static_cast<std::size_t>(s.camera.height), -1);
+  for (int y = 0; y < s.camera.height; ++y) {
+    for (int x = 0; x < s.camera.width; ++x) {
+      const double sx = (2.0 * (x + 0.5) / s.camera.width - 1.0) * t * aspect;
+      const double sy = (1.0 - 2.0 * (y + 0.5) / s.camera.height) * t;
+      Hit h;
+      if (accel.intersect(Ray{s.camera.position, normalize(forward + right * sx + up * sy)}, h)) {
+        ids[static_cast<std::size_t>(y) * static_cast<std::size_t>(s.camera.width) + static_cast<std::size_t>(x)] = h.material;
+      }
+    }
+  }
+  return ids;
+}
+
+struct MaskedFigures {
+  int pixels = 0;
+  double rmse = 0.0;
+  double relative_mse = 0.0;
+  double luminance_ratio = 1.0;  // game / reference
+};
+
+MaskedFigures masked(const Image& game, const Image& ref, const std::vector<int>& ids, int material) {
+  MaskedFigures m;
+  double se = 0.0, rel = 0.0, lg = 0.0, lr = 0.0;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (ids[i] != material) continue;
+    ++m.pixels;
+    for (int c = 0; c < 3; ++c) {
+      const double a = static_cast<double>(game.data[3 * i + static_cast<std::size_t>(c)]);
+      const double b = static_cast<double>(ref.data[3 * i + static_cast<std::size_t>(c)]);
+      se += (a - b) * (a - b);
+      rel += (a - b) * (a - b) / (b * b + default_relative_mse_epsilon);  // as compare_images (metrics.h)
+    }
+    lg += luminance({game.data[3 * i], game.data[3 * i + 1], game.data[3 * i + 2]});
+    lr += luminance({ref.data[3 * i], ref.data[3 * i + 1], ref.data[3 * i + 2]});
+  }
+  if (m.pixels > 0) {
+    m.rmse = std::sqrt(se / (3.0 * m.pixels));
+    m.relative_mse = rel / (3.0 * m.pixels);
+    m.luminance_ratio = lr > 0.0 ? lg / lr : (lg > 0.0 ? std::numeric_limits<double>::infinity() : 1.0);
+  }
+  return m;
+}
+
+void run_report(const ReportOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Scene scene = o.scene.empty() ? default_scene() : unwrap(load_scene(o.scene));
+  if (o.spp < 1) throw UsageError(fmt::format("--spp: {} must be >= 1", o.spp));
+  if (o.width < 0 || o.width > 4096) throw UsageError(fmt::format("--width: {} is out of range [16, 4096]", o.width));
+  if (o.width > 0) {
+    if (o.width < 16) throw UsageError(fmt::format("--width: {} is out of range [16, 4096]", o.width));
+    scene.camera.height = std::max(1, scene.camera.height * o.width / scene.camera.width);
+    scene.camera.width = o.width;
+  }
+  const fs::path dir(o.out);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw UsageError("--out: cannot create the folder '" + o.out + "': " + ec.message());
+  const std::vector<int> ids = material_ids(scene);
+  nlohmann::json sections = nlohmann::json::array();
+  std::string body;
+  ProgressBar bar("report", false);
+  const char* kinds[3] = {"punctual", "environment", "full"};
+  for (int k = 0; k < 3; ++k) {
+    const std::string kind = kinds[k];
+    const Scene s = variant(scene, kind);
+    RenderOptions ro;
+    ro.spp = o.spp;
+    auto ref = render_scene(s, ro);
+    if (!ref) throw UsageError(scene.source + ": " + ref.error().message);
+    GameOptions go;
+    auto game = render_game(s, go);
+    if (!game) throw UsageError(scene.source + ": " + game.error().message);
+    bar.update((k + 1) / 3.0);
+    CompareOptions co;
+    co.name_a = kind + " game";
+    co.name_b = kind + " reference";
+    const ImageDifference d = unwrap(compare_images(game->beauty, ref->beauty, co));
+    const Heatmap heat = unwrap(error_heatmap(game->beauty, ref->beauty, co));
+    for (const auto& [img, name] : {std::pair{&ref->beauty, "reference"}, std::pair{&game->beauty, "game"}}) {
+      unwrap(write_image(tonemap(*img, 0.0, ToneCurve::filmic), dir / (kind + "_" + name + ".png")));
+      unwrap(write_image(*img, dir / (kind + "_" + name + ".exr")));
+    }
+    unwrap(write_image(heat.image, dir / (kind + "_heatmap.png")));
+    nlohmann::json materials = nlohmann::json::array();
+    std::string rows;
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+      const MaskedFigures f = masked(game->beauty, ref->beauty, ids, static_cast<int>(m));
+      if (f.pixels == 0) continue;
+      materials.push_back({{"material", scene.materials[m].name}, {"model", scene.materials[m].model}, {"pixels", f.pixels},
+                           {"rmse", f.rmse}, {"relative_mse", f.relative_mse}, {"luminance_ratio", f.luminance_ratio}});
+      rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4f}</td></tr>\n",
+                          html_escape(scene.materials[m].name), html_escape(scene.materials[m].model), f.pixels, f.rmse,
+                          f.relative_mse, f.luminance_ratio);
+    }
+    sections.push_back({{"lighting", kind}, {"rmse", d.rmse}, {"relative_mse", d.relative_mse}, {"max_error", d.max_abs_error},
+                        {"luminance_ratio", d.mean_luminance_ratio}, {"ssim", std::isfinite(d.ssim) ? nlohmann::json(d.ssim) : nlohmann::json(nullptr)},
+                        {"reference_spp", ref->stats.spp_done}, {"materials", materials}});
+    body += fmt::format(
+        "<h2>{}</h2>\n<p>RMSE {:.4g}, relative MSE {:.4g}, max error {:.4g}, mean luminance game/reference {:.4f}, SSIM {:.4f} "
+        "(reference: {} spp).</p>\n<div class=row><figure><img src=\"{}_reference.png\"><figcaption>reference (path tracer)</figcaption></figure>"
+        "<figure><img src=\"{}_game.png\"><figcaption>game shading</figcaption></figure>"
+        "<figure><img src=\"{}_heatmap.png\"><figcaption>relative error, white = {:.3g}</figcaption></figure></div>\n"
+        "<table><tr><th>material</th><th>model</th><th>pixels</th><th>RMSE</th><th>relative MSE</th><th>luminance game/ref</th></tr>\n{}</table>\n",
+        kind, d.rmse, d.relative_mse, d.max_abs_error, d.mean_luminance_ratio, d.ssim, ref->stats.spp_done, kind, kind, kind,
+        heat.scale, rows);
+  }
+  bar.finish();
+  const std::string html = fmt::format(
+      "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>shadelab report: {0}</title>\n<style>body{{font-family:sans-serif;"
+      "max-width:1400px;margin:2em auto}} .row{{display:flex;gap:8px}} figure{{margin:0}} img{{max-width:100%}} table{{border-collapse:collapse}}"
+      " td,th{{border:1px solid #ccc;padding:2px 8px;text-align:right}}</style></head><body>\n<h1>Game shading against the reference: {0}</h1>\n"
+      "<p><b>punctual</b>: only punctual lights, direct light: the game shading equation (pi f c cos with c the game colour) should match the "
+      "path tracer within its noise. <b>environment</b>: only the environment, direct light: SH9 diffuse and prefiltered specular against the exact "
+      "integral. <b>full</b>: everything, the reference at full depth: adds interreflection and area lights, which game shading leaves out.</p>\n{1}"
+      "</body></html>\n",
+      html_escape(scene.source), body);
+  unwrap(write_file_atomically(dir / "index.html", std::vector<char>(html.begin(), html.end())));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (o.json) {
+    print_json({{"scene", scene.source}, {"report", (dir / "index.html").string()}, {"sections", sections}, {"seconds", seconds}});
+  } else {
+    for (const auto& s : sections) {
+      fmt::print("{:<12} RMSE {:.4g}  relative MSE {:.4g}  luminance game/ref {:.4f}\n", s["lighting"].get<std::string>(),
+                 s["rmse"].get<double>(), s["relative_mse"].get<double>(), s["luminance_ratio"].get<double>());
+    }
+    fmt::print("wrote {}\n", (dir / "index.html").string());
+  }
+}
+
+void add_report_command(CLI::App& app, Command& command) {
+  auto o = std::make_shared<ReportOptions>();
+  auto* sub = app.add_subcommand("report", "game shading against the reference, per lighting and material, as an HTML page");
+  sub->add_option("SCENE", o->scene, "scene file (default: the built-in scene)");
+  sub->add_option("--out", o->out, "output folder (index.html and images)")->capture_default_str();
+  sub->add_option("--spp", o->spp, "reference samples per pixel")->capture_default_str();
+  sub->add_option("--width", o->width, "render width (the height follows the camera's aspect)");
+  sub->add_flag("--json", o->json, "machine-readable summary");
+  sub->callback([o, &command] { command.run = [o] { run_report(*o); }; });
+}
+
+}  // namespace
+
+const CommandRegistration registration_report(100, add_report_command);
+
+}  // namespace shadelab::cli
