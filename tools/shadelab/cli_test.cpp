@@ -19,7 +19,7 @@ constexpr double pi = std::numbers::pi;
 
 TEST(Cli, HelpForEveryCommand) {
   for (const char* c : {"--help", "zoo --help", "brdf --help", "brdf list --help", "brdf eval --help",
-                        "brdf albedo --help", "brdf check --help", "fresnel --help", "light --help", "bake --help", "bake irradiance --help", "render --help"}) {
+                        "brdf albedo --help", "brdf check --help", "fresnel --help", "light --help", "bake --help", "bake irradiance --help", "render --help", "report --help", "compare --help", "plot --help", "plot lobe --help", "sheet --help"}) {
     const CliRun r = run(c);
     EXPECT_EQ(r.code, 0) << c;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << c;
