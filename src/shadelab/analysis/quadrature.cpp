@@ -327,30 +327,50 @@ class PolarCoordinates {
   }
 
   // The integral over the upper (or lower) hemisphere: outer phi' in [0, 2 pi], inner theta' between the
-  // axis (or the antipode) and the horizon.
+  // axis (or the antipode) and the horizon. On the axis' side theta' is graded towards the axis,
+  // theta' = theta_h expm1(a u) / expm1(a) with u in [0, 1] and a = 12, so that the inner rule's nodes reach
+  // from theta_h down to ~1e-7 theta_h, about two per decade: a lobe that is very thin across (at grazing
+  // angles its width is ~2 cos(theta_o) times its length) and crosses a ray at a tiny theta' is still seen.
   VectorQuadratureResult half(bool upper, std::size_t dim, const QuadratureOptions& outer,
                               const std::optional<QuadratureOptions>& inner) const {
-    const VectorFunction2d integrand = [this](double phi, double theta, std::span<double> out) {
-      const double sin_t = std::sin(theta);
-      const Vec3 w = m_frame.to_world(spherical_direction(sin_t, std::cos(theta), phi));
-      m_g(w, out);
-      for (auto& v : out) v *= sin_t;  // d(omega) = sin(theta) d(theta) d(phi)
-    };
+    constexpr double grading = 12.0;
+    const double expm1_grading = std::expm1(grading);
     // Along the great semicircle from the axis at azimuth phi, w.z = A sin(theta) + B cos(theta) with
     // A = cos(phi) s.z + sin(phi) t.z and B = axis.z; it crosses the horizon once, at theta_h in (0, pi).
     const double b_coef = m_axis.z;
-    const BoundFunction horizon = [this, b_coef](double phi) {
+    const auto theta_horizon = [this, b_coef](double phi) {
       const double a_coef = std::cos(phi) * m_frame.s.z + std::sin(phi) * m_frame.t.z;
       return b_coef > 0.0 ? std::atan2(b_coef, -a_coef) : std::atan2(-b_coef, a_coef);
     };
-    const BoundFunction zero = [](double) { return 0.0; };
-    const BoundFunction antipode = [](double) { return pi; };
     // The part of the semicircle next to the axis is on the axis' side of the horizon.
     const bool near = upper == (b_coef > 0.0);
+    double cached_phi = std::numeric_limits<double>::quiet_NaN();
+    double cached_theta_h = 0.0;
+    const VectorFunction2d integrand = [&](double phi, double u, std::span<double> out) {
+      if (!(phi == cached_phi)) {  // the inner integral runs at one phi: theta_h once per line
+        cached_phi = phi;
+        cached_theta_h = theta_horizon(phi);
+      }
+      const double th = cached_theta_h;
+      double theta = 0.0;
+      double jacobian = 0.0;
+      if (near) {
+        theta = th * std::expm1(grading * u) / expm1_grading;
+        jacobian = th * grading * std::exp(grading * u) / expm1_grading;  // d(theta) / du
+      } else {
+        theta = th + (pi - th) * u;
+        jacobian = pi - th;
+      }
+      const double sin_t = std::sin(theta);
+      const Vec3 w = m_frame.to_world(spherical_direction(sin_t, std::cos(theta), phi));
+      m_g(w, out);
+      for (auto& v : out) v *= sin_t * jacobian;  // d(omega) = sin(theta) d(theta) d(phi)
+    };
+    const BoundFunction zero = [](double) { return 0.0; };
+    const BoundFunction one = [](double) { return 1.0; };
     QuadratureOptions o = outer;
     o.initial_intervals = std::max(4, (outer.initial_intervals + 3) / 4 * 4);  // breakpoints at 0, pi/2, pi, 3pi/2
-    return integrate_2d_vector(integrand, dim, 0.0, two_pi, near ? zero : horizon, near ? horizon : antipode, o,
-                               inner);
+    return integrate_2d_vector(integrand, dim, 0.0, two_pi, zero, one, o, inner);
   }
 
  private:

@@ -33,7 +33,8 @@ Rgb CookTorrance::specular_eval(const Vec3& wi, const Vec3& wo) const {
   const double nl = wi.z;
   const double nv = wo.z;
   const double nh = h.z;
-  const double lh = dot(wi, h);  // == V.H for a reflection pair
+  // L.H == V.H for a reflection pair in exact arithmetic; their mean keeps f(wi, wo) == f(wo, wi) exactly.
+  const double lh = 0.5 * (dot(wi, h) + dot(wo, h));
   if (nh <= 0.0 || lh <= 0.0) return {};
   const double d = distribution(nh);
   if (d == 0.0) return {};

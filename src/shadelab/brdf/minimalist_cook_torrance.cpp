@@ -14,7 +14,8 @@ MinimalistCookTorrance::MinimalistCookTorrance(const Rgb& kd, const Rgb& ks, dou
 
 Rgb MinimalistCookTorrance::specular_eval(const Vec3& wi, const Vec3& wo) const {
   const Vec3 h = half_vector(wi, wo);
-  const double lh = safe_divisor(dot(wi, h));
+  // L.H = V.H in exact arithmetic; their mean keeps f(wi, wo) == f(wo, wi) bit for bit.
+  const double lh = safe_divisor(0.5 * (dot(wi, h) + dot(wo, h)));
   // D F V = (n+1)/(2pi) (N.H)^n * 1/(4 (L.H)^3) = (n+1)(N.H)^n / (8 pi (L.H)^3)   (ShaderX7, zoo article)
   return m_ks * (D_blinn_phong_ndf(h.z, m_n) / (4.0 * lh * lh * lh));
 }
