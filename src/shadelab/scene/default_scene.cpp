@@ -35,7 +35,7 @@ constexpr std::string_view default_json = R"json({
       "params": { "kd": 0.08, "ks": 1, "d": "blinn-phong", "g": "kelemen", "f": "schlick", "f0": 0.04, "n": 4 },
       "textures": { "kd": "asphalt_kd", "gloss": "asphalt_gloss" },
       "gloss_range": [2, 8192],
-      "uv_scale": 10
+      "uv_scale": 200
     },
     "lambert": { "model": "lambert", "params": { "kd": [0.75, 0.75, 0.72] } },
     "phong-modified": { "model": "phong-modified", "params": { "kd": [0.6, 0.1, 0.08], "ks": 0.2, "n": 200 } },
@@ -59,7 +59,7 @@ constexpr std::string_view default_json = R"json({
     "wrapped-diffuse": { "model": "wrapped-diffuse", "params": { "kd": [0.7, 0.5, 0.3], "w": 0.5 } }
   },
   "shapes": [
-    { "type": "quad", "corner": [-50, 0, 50], "u": [100, 0, 0], "v": [0, 0, -100], "material": "asphalt" },
+    { "type": "quad", "corner": [-1000, 0, 1000], "u": [2000, 0, 0], "v": [0, 0, -2000], "material": "asphalt" },
     { "type": "sphere", "center": [-4.2, 0.5, 0], "radius": 0.5, "material": "lambert" },
     { "type": "sphere", "center": [-3.0, 0.5, 0], "radius": 0.5, "material": "phong-modified" },
     { "type": "sphere", "center": [-1.8, 0.5, 0], "radius": 0.5, "material": "blinn-phong-modified" },
