@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <sys/wait.h>
 
 #include "cli_run.h"
 #include "shadelab/image/image_io.h"
@@ -58,6 +59,24 @@ TEST(CliRender, BadInput) {
   const fs::path bad = temp_dir() / "bad.json";
   std::ofstream(bad) << R"({"shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": -2, "material": "x"}]})";
   expect_usage_error("render " + bad.string(), "/shapes/0/radius");
+}
+
+TEST(CliRender, InterruptWritesThePartialImage) {
+  // SIGINT after 2 s of a render that would take far longer: exit code 130 and the accumulated image on disk.
+  const fs::path out = temp_dir() / "interrupted.exr";
+  const std::string cmd = "timeout --preserve-status -s INT 2 " + std::string(SHADELAB_EXE) + " render " + furnace +
+                          " --spp 1000000 --out " + out.string() + " --json > " + (temp_dir() / "int.json").string() + " 2>/dev/null";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  const auto img = shadelab::read_image(out);
+  ASSERT_TRUE(img.has_value()) << img.error().message;
+  std::ifstream f(temp_dir() / "int.json");
+  const auto j = nlohmann::json::parse(f, nullptr, false);
+  ASSERT_FALSE(j.is_discarded());
+  EXPECT_TRUE(j["interrupted"].get<bool>());
+  EXPECT_GT(j["spp"].get<int>(), 0);
+  EXPECT_LT(j["spp"].get<int>(), 1000000);
 }
 
 TEST(CliReport, WritesAPageWithThreeLightings) {

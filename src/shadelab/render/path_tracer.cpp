@@ -453,7 +453,8 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   std::vector<Vec3> normal_first(options.aovs ? pixels : 0);
   std::vector<double> depth_first(options.aovs ? pixels : 0, 0.0);
   std::atomic<std::uint64_t> rays{0};
-  const int per_pass = std::max(1, spp / 32);
+  // Passes of up to 8 samples: Ctrl-C and progress react within one pass.
+  const int per_pass = std::clamp(spp / 32, 1, 8);
   RenderResult result;
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   int done = 0;
