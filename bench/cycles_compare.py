@@ -1,0 +1,119 @@
+# Builds a shadelab scene (Lambert spheres and quads, emissive spheres and quads, a uniform environment) in
+# Blender and renders it with Cycles, for bench/cycles_compare.sh. Run as:
+#   blender -b --factory-startup --python bench/cycles_compare.py -- SCENE.json SPP OUT.exr THREADS
+# shadelab is Y-up, Blender Z-up: (x, y, z) -> (x, -z, y). Cycles' Diffuse BSDF is Lambert kd/pi, an Emission
+# shader of strength 1 emits radiance equal to its colour, and the world Background is radiance: the scene's
+# radiometric values carry over unchanged.
+import json
+import math
+import sys
+import time
+
+import bpy
+
+args = sys.argv[sys.argv.index("--") + 1:]
+scene_path, spp, out_path, threads = args[0], int(args[1]), args[2], int(args[3])
+with open(scene_path) as f:
+    doc = json.load(f)
+if doc.get("units", "game") != "radiometric":
+    sys.exit("cycles_compare: the scene must use radiometric units")
+
+
+def to_blender(v):
+    return (v[0], -v[2], v[1])
+
+
+def colour(v):
+    return (v, v, v) if isinstance(v, (int, float)) else tuple(v)
+
+
+bpy.ops.wm.read_factory_settings(use_empty=True)
+scene = bpy.context.scene
+scene.render.engine = "CYCLES"
+scene.cycles.device = "CPU"
+scene.cycles.samples = spp
+scene.cycles.use_denoising = False
+scene.cycles.use_adaptive_sampling = False
+depth = doc.get("render", {}).get("max_depth", 8)
+scene.cycles.max_bounces = depth
+scene.cycles.diffuse_bounces = depth
+scene.cycles.sample_clamp_direct = 0.0
+scene.cycles.sample_clamp_indirect = 0.0
+scene.cycles.filter_width = 0.01  # shadelab uses a box filter over the pixel
+scene.render.threads_mode = "FIXED"
+scene.render.threads = threads
+cam = doc["camera"]
+scene.render.resolution_x = cam["width"]
+scene.render.resolution_y = cam["height"]
+scene.render.resolution_percentage = 100
+scene.render.image_settings.file_format = "OPEN_EXR"
+scene.render.image_settings.color_depth = "32"
+scene.render.filepath = out_path
+scene.view_settings.view_transform = "Standard"
+
+materials = {}
+for name, m in doc.get("materials", {}).items():
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nodes = mat.node_tree.nodes
+    nodes.clear()
+    out = nodes.new("ShaderNodeOutputMaterial")
+    if "emission" in m:
+        node = nodes.new("ShaderNodeEmission")
+        node.inputs["Color"].default_value = (*colour(m["emission"]), 1.0)
+        node.inputs["Strength"].default_value = 1.0
+        mat.node_tree.links.new(node.outputs["Emission"], out.inputs["Surface"])
+    else:
+        if m.get("model") != "lambert":
+            sys.exit("cycles_compare: material %s: only lambert and emission have an exact Cycles equivalent" % name)
+        node = nodes.new("ShaderNodeBsdfDiffuse")
+        node.inputs["Color"].default_value = (*colour(m.get("params", {}).get("kd", 0.5)), 1.0)
+        node.inputs["Roughness"].default_value = 0.0
+        mat.node_tree.links.new(node.outputs["BSDF"], out.inputs["Surface"])
+    materials[name] = mat
+
+for shape in doc.get("shapes", []):
+    if shape["type"] == "sphere":
+        bpy.ops.mesh.primitive_uv_sphere_add(segments=256, ring_count=128, radius=shape["radius"],
+                                             location=to_blender(shape["center"]))
+        bpy.ops.object.shade_smooth()
+    elif shape["type"] == "quad":
+        c, u, v = shape["corner"], shape["u"], shape["v"]
+        pts = [c, [c[i] + u[i] for i in range(3)], [c[i] + u[i] + v[i] for i in range(3)], [c[i] + v[i] for i in range(3)]]
+        mesh = bpy.data.meshes.new("quad")
+        mesh.from_pydata([to_blender(p) for p in pts], [], [(0, 1, 2, 3)])
+        obj = bpy.data.objects.new("quad", mesh)
+        scene.collection.objects.link(obj)
+        bpy.context.view_layer.objects.active = obj
+    else:
+        sys.exit("cycles_compare: shape type %s is not supported" % shape["type"])
+    bpy.context.view_layer.objects.active.data.materials.append(materials[shape["material"]])
+
+world = bpy.data.worlds.new("world")
+world.use_nodes = True
+bg = world.node_tree.nodes["Background"]
+env = doc.get("environment", {})
+bg.inputs["Color"].default_value = (*colour(env.get("uniform", 0.0)), 1.0)
+bg.inputs["Strength"].default_value = 1.0
+scene.world = world
+
+cam_data = bpy.data.cameras.new("camera")
+cam_data.sensor_fit = "VERTICAL"
+cam_data.angle_y = math.radians(cam["fov"])
+cam_obj = bpy.data.objects.new("camera", cam_data)
+scene.collection.objects.link(cam_obj)
+cam_obj.location = to_blender(cam["position"])
+target = bpy.data.objects.new("target", None)
+scene.collection.objects.link(target)
+target.location = to_blender(cam["look_at"])
+track = cam_obj.constraints.new("TRACK_TO")
+track.target = target
+track.track_axis = "TRACK_NEGATIVE_Z"
+track.up_axis = "UP_Y"
+scene.camera = cam_obj
+
+start = time.time()
+bpy.ops.render.render(write_still=True)
+seconds = time.time() - start
+print("CYCLES_RESULT %s" % json.dumps({"seconds": seconds, "samples": cam["width"] * cam["height"] * spp,
+                                       "samples_per_second": cam["width"] * cam["height"] * spp / seconds}))
