@@ -227,4 +227,20 @@ Sh9 sh9_rotate(const Sh9& sh, const Mat3& rotation) {
   return out;
 }
 
+Rgb sh9_irradiance_error_bound(const CubeMap& env, const Sh9& sh) {
+  const CubeTexelTable& t = CubeTexelTable::get(env.size);
+  const auto n = static_cast<std::size_t>(env.size);
+  Rgb energy;
+  for (std::size_t k = 0; k < t.direction.size(); ++k) {
+    const std::size_t p = k % (n * n);
+    const Rgb l = env.faces[k / (n * n)].at(static_cast<int>(p % n), static_cast<int>(p / n));
+    energy += l * l * t.solid_angle[k];
+  }
+  Rgb captured;
+  for (const Rgb& c : sh.c) captured += c * c;
+  const Rgb r = energy - captured;
+  return {sh9_truncation_constant * std::sqrt(std::max(0.0, r.r)), sh9_truncation_constant * std::sqrt(std::max(0.0, r.g)),
+          sh9_truncation_constant * std::sqrt(std::max(0.0, r.b))};
+}
+
 }  // namespace shadelab

@@ -89,4 +89,12 @@ Sh9 sh9_directional_light(const Vec3& to_light, const Rgb& colour_game, bool d3d
 // The coefficients of the rotated function g(w) = f(R^-1 w).
 Sh9 sh9_rotate(const Sh9& sh, const Mat3& rotation);
 
+// A rigorous bound on the order-2 truncation: for every n, |E(n) - sh9_irradiance(sh, n)| <= K sqrt(R) per
+// channel, where R = integral of L^2 - sum of the nine squared coefficients (Parseval: the energy SH9 leaves
+// out) and K = sqrt(sum over even l >= 4 of A_l^2 (2l + 1)/(4 pi)) = 0.1279158 (A_l of Ramamoorthi & Hanrahan
+// 2001, eq. 8; odd l >= 3 have A_l = 0); Cauchy-Schwarz over m (addition theorem), then over l.
+// Divide by pi for the game convention. `sh` must be project_sh9(env).
+inline constexpr double sh9_truncation_constant = 0.12791583849327710;
+Rgb sh9_irradiance_error_bound(const CubeMap& env, const Sh9& sh);
+
 }  // namespace shadelab
