@@ -30,8 +30,7 @@ using shadelab::testing::run;
 namespace fs = std::filesystem;
 
 std::string temp_dir() {
-  const std::string dir = ::testing::TempDir() + "shadelab_cli_plot/";
-  fs::create_directories(dir);
+  static const std::string dir = shadelab::testing::process_temp_dir("shadelab_cli_plot").string() + "/";
   return dir;
 }
 

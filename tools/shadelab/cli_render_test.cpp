@@ -18,12 +18,7 @@ using shadelab::testing::json_of;
 using shadelab::testing::run;
 
 fs::path temp_dir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::path(::testing::TempDir()) / "shadelab_cli_render";
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-  }();
+  static const fs::path dir = shadelab::testing::process_temp_dir("shadelab_cli_render");
   return dir;
 }
 

@@ -11,8 +11,19 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <filesystem>
+#include <unistd.h>
 
 namespace shadelab::testing {
+
+// A fresh folder for this test process: CTest runs every test in its own process, several at once, so the
+// folder name carries the process id (a shared folder would be wiped by a neighbour).
+inline std::filesystem::path process_temp_dir(const std::string& name) {
+  const std::filesystem::path d = std::filesystem::path(::testing::TempDir()) / (name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
 
 struct CliRun {
   int code = -1;
@@ -22,7 +33,9 @@ struct CliRun {
 
 inline CliRun run(const std::string& args) {
   static int counter = 0;
-  const std::string err_path = ::testing::TempDir() + "shadelab_cli_err_" + std::to_string(counter++) + ".txt";
+  // Per process and call: CTest runs tests in parallel processes, which must not share the capture file.
+  const std::string err_path = ::testing::TempDir() + "shadelab_cli_err_" + std::to_string(::getpid()) + "_" +
+                               std::to_string(counter++) + ".txt";
   const std::string cmd = std::string(SHADELAB_EXE) + " " + args + " 2>" + err_path;
   CliRun r;
   FILE* pipe = popen(cmd.c_str(), "r");
