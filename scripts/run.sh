@@ -5,6 +5,6 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake --preset release
-cmake --build --preset release -j "$jobs" --target shadelab
+cmake --build --preset release -j "$jobs" --target shadelab_cli
 if [ $# -eq 0 ]; then set -- render; fi
 ./build/release/tools/shadelab/shadelab "$@"
