@@ -277,7 +277,7 @@ TEST(SceneJson, PhotometricUnits) {
 
 TEST(SceneJson, EnvironmentImageScaleCarriesTheUnits) {
   const std::string world = std::string(SHADELAB_BLENDER_WORLDS) + "/studio.exr";
-  if (!fs::exists(world)) GTEST_SKIP() << world << " missing (Debian package blender-data)";
+  ASSERT_TRUE(fs::exists(world)) << world << " missing: scripts/setup.sh installs Debian package blender-data";
   auto s = parse_text(R"({"units": "photometric", "environment": {"file": ")" + world +
                       R"(", "rotation": 30, "scale": 683}})");
   ASSERT_TRUE(s) << s.error().message;
