@@ -28,7 +28,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "shadelab/analysis/quadrature.h"
+#include "shadelab/numeric/quadrature.h"
 #include "shadelab/brdf/brdf.h"
 
 namespace shadelab {
