@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <map>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "shadelab/core/constants.h"
+#include "shadelab/image/srgb.h"
 
 namespace shadelab {
 
@@ -359,6 +361,8 @@ struct GltfBuilder {
   MeshShape mesh;
   bool all_normals = true;
   bool all_uvs = true;
+  bool filter = false;  // only the primitives whose material is `material` (load_gltf_with_materials)
+  int material = -1;
 
   Result<bool> add_primitive(const tinygltf::Primitive& prim, const std::string& where, const MeshTransform& xf) {
     if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
@@ -453,6 +457,7 @@ struct GltfBuilder {
       }
       const tinygltf::Mesh& m = model.meshes[static_cast<std::size_t>(node.mesh)];
       for (std::size_t p = 0; p < m.primitives.size(); ++p) {
+        if (filter && m.primitives[p].material != material) continue;
         const std::string where = "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p);
         auto r = add_primitive(m.primitives[p], where, xf);
         if (!r) return r;
@@ -473,14 +478,16 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
 
 }  // namespace
 
-Result<MeshShape> load_gltf(const std::filesystem::path& path) {
+namespace {
+
+Result<tinygltf::Model> read_gltf(const std::filesystem::path& path, bool images) {
   tinygltf::Model model;
   std::string err;
   std::string warn;
   bool ok = false;
   try {
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(&skip_image, nullptr);
+    if (!images) loader.SetImageLoader(&skip_image, nullptr);
     ok = lower_extension(path) == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
                                          : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
   } catch (const std::exception& e) {
@@ -490,8 +497,13 @@ Result<MeshShape> load_gltf(const std::filesystem::path& path) {
   if (!model.extensionsRequired.empty()) {
     return mesh_error(path, "required extension " + model.extensionsRequired.front() + " is not supported");
   }
+  return model;
+}
 
-  GltfBuilder builder{model, {}, true, true};
+// The triangles of the default scene (all of them, or those of one material).
+Result<MeshShape> build_gltf_mesh(const std::filesystem::path& path, const tinygltf::Model& model, bool filter,
+                                  int material) {
+  GltfBuilder builder{model, {}, true, true, filter, material};
   builder.mesh.source = path.string();
   std::vector<int> roots;
   if (!model.scenes.empty()) {
@@ -520,9 +532,123 @@ Result<MeshShape> load_gltf(const std::filesystem::path& path) {
   if (!builder.all_normals) mesh.normals.clear();
   if (!builder.all_uvs) mesh.uvs.clear();
   finish_normals(mesh);
-  auto checked = check_mesh(path, mesh);
+  return mesh;
+}
+
+// A glTF texture's image as a Texture: 8- or 16-bit, 1 to 4 channels; colour decoded from sRGB.
+Result<Texture> gltf_texture(const std::filesystem::path& path, const tinygltf::Model& model, int index, bool data,
+                             const std::string& what) {
+  if (index < 0 || static_cast<std::size_t>(index) >= model.textures.size()) {
+    return mesh_error(path, what + " refers to texture " + std::to_string(index) + ", which does not exist");
+  }
+  const int source = model.textures[static_cast<std::size_t>(index)].source;
+  if (source < 0 || static_cast<std::size_t>(source) >= model.images.size()) {
+    return mesh_error(path, what + ": texture " + std::to_string(index) + " has no image");
+  }
+  const tinygltf::Image& im = model.images[static_cast<std::size_t>(source)];
+  const int bytes = im.bits == 16 ? 2 : 1;
+  if (im.width <= 0 || im.height <= 0 || im.component < 1 || im.component > 4 || (im.bits != 8 && im.bits != 16) ||
+      im.image.size() < static_cast<std::size_t>(im.width) * static_cast<std::size_t>(im.height) *
+                            static_cast<std::size_t>(im.component * bytes)) {
+    return mesh_error(path, what + ": image " + std::to_string(source) + " could not be decoded");
+  }
+  Texture t;
+  t.name = what;
+  t.data = data;
+  t.source = path.string() + " image " + std::to_string(source);
+  t.image = Image(im.width, im.height);
+  const double max_code = bytes == 2 ? 65535.0 : 255.0;
+  for (int y = 0; y < im.height; ++y) {
+    for (int x = 0; x < im.width; ++x) {
+      const std::size_t px = (static_cast<std::size_t>(y) * static_cast<std::size_t>(im.width) + static_cast<std::size_t>(x)) *
+                             static_cast<std::size_t>(im.component);
+      double c[3];
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t at = (px + static_cast<std::size_t>(std::min(k, im.component - 1))) * static_cast<std::size_t>(bytes);
+        const double code = bytes == 2 ? im.image[at] | (im.image[at + 1] << 8) : im.image[at];
+        c[k] = data ? code / max_code : srgb_to_linear(code / max_code);
+      }
+      t.image.set(x, y, Rgb{c[0], c[1], c[2]});
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+Result<MeshShape> load_gltf(const std::filesystem::path& path) {
+  auto model = read_gltf(path, false);
+  if (!model) return model.error();
+  auto mesh = build_gltf_mesh(path, *model, false, -1);
+  if (!mesh) return mesh.error();
+  auto checked = check_mesh(path, *mesh);
   if (!checked) return checked.error();
   return mesh;
+}
+
+Result<GltfScene> load_gltf_with_materials(const std::filesystem::path& path) {
+  auto model = read_gltf(path, true);
+  if (!model) return model.error();
+  GltfScene out;
+  std::map<std::pair<int, bool>, int> texture_of;  // (glTF texture, data) -> index into out.textures
+  const auto texture = [&](int index, bool data, const std::string& what) -> Result<int> {
+    const auto it = texture_of.find({index, data});
+    if (it != texture_of.end()) return it->second;
+    auto t = gltf_texture(path, *model, index, data, what);
+    if (!t) return t.error();
+    out.textures.push_back(std::move(*t));
+    return texture_of[{index, data}] = static_cast<int>(out.textures.size()) - 1;
+  };
+  for (std::size_t i = 0; i < model->materials.size(); ++i) {
+    const tinygltf::Material& src = model->materials[i];
+    const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+    const std::string what = "material " + std::to_string(i) + (src.name.empty() ? "" : " '" + src.name + "'");
+    GltfMaterial m;
+    m.name = src.name.empty() ? "material" + std::to_string(i) : src.name;
+    if (pbr.baseColorFactor.size() >= 3) m.base_color = {pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]};
+    m.metallic = pbr.metallicFactor;
+    m.roughness = pbr.roughnessFactor;
+    const bool finite = std::isfinite(m.base_color.r) && std::isfinite(m.base_color.g) && std::isfinite(m.base_color.b) &&
+                        std::isfinite(m.metallic) && std::isfinite(m.roughness);
+    if (!finite || m.base_color.r < 0.0 || m.base_color.g < 0.0 || m.base_color.b < 0.0 ||
+        std::max({m.base_color.r, m.base_color.g, m.base_color.b}) > 1.0 || m.metallic < 0.0 || m.metallic > 1.0 ||
+        m.roughness < 0.0 || m.roughness > 1.0) {
+      return mesh_error(path, what + ": baseColorFactor, metallicFactor and roughnessFactor must lie in [0, 1]");
+    }
+    if (pbr.baseColorTexture.index >= 0) {
+      auto t = texture(pbr.baseColorTexture.index, false, what + " baseColorTexture");
+      if (!t) return t.error();
+      m.base_color_texture = *t;
+    }
+    if (pbr.metallicRoughnessTexture.index >= 0) {
+      auto t = texture(pbr.metallicRoughnessTexture.index, true, what + " metallicRoughnessTexture");
+      if (!t) return t.error();
+      m.metallic_roughness_texture = *t;
+    }
+    out.materials.push_back(m);
+  }
+  // One mesh per material that has triangles; material -1 (none) gets glTF's default material.
+  int default_material = -1;
+  for (int mat = -1; mat < static_cast<int>(model->materials.size()); ++mat) {
+    auto built = build_gltf_mesh(path, *model, true, mat);
+    if (!built) return built.error();
+    MeshShape mesh = std::move(built).value();
+    if (mesh.indices.empty()) continue;
+    if (mat == -1) {
+      GltfMaterial d;  // glTF 2.0 section 3.9.6: base colour 1, metallic 1, roughness 1
+      d.name = "default";
+      out.materials.push_back(d);
+      default_material = static_cast<int>(out.materials.size()) - 1;
+    }
+    mesh.material = mat == -1 ? default_material : mat;
+    out.meshes.push_back(std::move(mesh));
+  }
+  if (out.meshes.empty()) return mesh_error(path, "the default scene has no triangles");
+  for (const MeshShape& m : out.meshes) {
+    auto checked = check_mesh(path, m);
+    if (!checked) return checked.error();
+  }
+  return out;
 }
 
 Result<MeshShape> load_mesh(const std::filesystem::path& path) {

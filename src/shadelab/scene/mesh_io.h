@@ -34,6 +34,27 @@ Result<MeshShape> load_mesh(const std::filesystem::path& path);
 Result<MeshShape> load_obj(const std::filesystem::path& path);
 Result<MeshShape> load_gltf(const std::filesystem::path& path);  // .gltf (JSON) or .glb (binary)
 
+// A glTF file with its materials (pbrMetallicRoughness, glTF 2.0 section 3.9.2): the triangles split into one
+// mesh per material (MeshShape::material indexes `materials`; primitives without a material get glTF's
+// default material, appended last), and the images of the material textures decoded into `textures`
+// (baseColorTexture as sRGB colour, metallicRoughnessTexture as data: roughness in green, metallic in blue).
+// Texture transforms, texCoord sets other than 0, samplers' filters and wrap modes, alpha, emission, normal
+// and occlusion maps are not read; the geometry contract is load_gltf's.
+struct GltfMaterial {
+  std::string name;
+  Rgb base_color{1.0, 1.0, 1.0};  // baseColorFactor (linear RGB; alpha ignored)
+  double metallic = 1.0;          // metallicFactor
+  double roughness = 1.0;         // roughnessFactor (perceptual)
+  int base_color_texture = -1;          // index into GltfScene::textures
+  int metallic_roughness_texture = -1;  // index into GltfScene::textures
+};
+struct GltfScene {
+  std::vector<MeshShape> meshes;
+  std::vector<GltfMaterial> materials;
+  std::vector<Texture> textures;
+};
+Result<GltfScene> load_gltf_with_materials(const std::filesystem::path& path);
+
 // An affine map p -> linear p + translate. Normals go through the inverse transpose of `linear` and are
 // renormalized; a mirroring map (det < 0) reverses the triangles' winding. `linear` must be invertible.
 struct MeshTransform {

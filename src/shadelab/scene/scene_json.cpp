@@ -546,7 +546,7 @@ class Parser {
   }
 
   void parse_material_textures(const Node& node, const ModelInfo& info, Material& m) const {
-    const Object o(node, {"kd", "ks", "gloss", "normal"}, "material textures");
+    const Object o(node, {"kd", "ks", "gloss", "normal", "base_color", "metallic_roughness"}, "material textures");
     auto slot = [&](std::string_view key, bool data, const char* what) -> int {
       const Node n = *o.get(key);
       const int index = texture_ref(n);
@@ -581,6 +581,19 @@ class Parser {
       m.gloss_texture = slot("gloss", true, "a gloss map");
     }
     if (o.has("normal")) m.normal_texture = slot("normal", true, "a normal map");
+    // glTF's metallic-roughness textures (they multiply the parameters: docs/scene-format.md).
+    if (o.has("base_color")) {
+      if (!has_param(info, "base_color"))
+        throw Failure{o.node().child_pointer("base_color"), "brdf " + info.name + " has no parameter 'base_color'"};
+      m.base_color_texture = slot("base_color", false, "a base colour map");
+    }
+    if (o.has("metallic_roughness")) {
+      if (!has_param(info, "metallic") || !has_param(info, "perceptual_roughness")) {
+        throw Failure{o.node().child_pointer("metallic_roughness"),
+                      "brdf " + info.name + " has no parameters 'metallic' and 'perceptual_roughness'"};
+      }
+      m.metallic_roughness_texture = slot("metallic_roughness", true, "a metallic-roughness map");
+    }
   }
 
   int material_ref(const Node& n) const {
@@ -633,11 +646,16 @@ class Parser {
       d.material = material_ref(o.require("material"));
       m_scene.disks.push_back(d);
     } else {
-      const Object o(node, {"type", "file", "transform", "material"}, "a mesh");
+      const Object o(node, {"type", "file", "transform", "material", "gltf_materials"}, "a mesh");
       const Node file_node = o.require("file");
       const std::filesystem::path path = file(file_node);
       MeshTransform xf;
       if (auto n = o.get("transform")) xf = parse_transform(*n);
+      if (auto g = o.get("gltf_materials")) {
+        if (o.has("material")) throw Failure{o.node().child_pointer("material"), "give 'material' or 'gltf_materials', not both"};
+        add_gltf_meshes(file_node, path, xf, word(*g, {"filament", "ggx"}));
+        return;
+      }
       const int material = material_ref(o.require("material"));
       auto cached = m_meshes.find(path.string());
       if (cached == m_meshes.end()) {
@@ -648,6 +666,63 @@ class Parser {
       MeshShape mesh = cached->second;
       transform_mesh(mesh, xf);
       mesh.material = material;
+      m_scene.meshes.push_back(std::move(mesh));
+    }
+  }
+
+  // A glTF file's own pbrMetallicRoughness materials (docs/scene-format.md, "glTF materials"): each becomes a
+  // material named "<file name>/<material name>" of model filament (base_color, metallic,
+  // perceptual_roughness and the textures, which multiply them), or, with "ggx", of model ggx with the
+  // metallic workflow's kd = (1 - metallic) base, f0 = 0.04 (1 - metallic) + base metallic and roughness as
+  // given; a textured material stays filament (ggx has no metallic parameter for the texture to drive).
+  void add_gltf_meshes(const Node& file_node, const std::filesystem::path& path, const MeshTransform& xf,
+                       const std::string& model) {
+    auto result = load_gltf_with_materials(path);
+    if (!result) file_node.fail(result.error().message);
+    GltfScene gltf = std::move(result).value();
+    GltfScene* loaded = &gltf;
+    std::vector<int> material_of(loaded->materials.size(), -1);
+    std::vector<int> texture_of(loaded->textures.size(), -1);
+    const auto texture = [&](int index) {
+      if (index < 0) return -1;
+      if (texture_of[static_cast<std::size_t>(index)] < 0) {
+        texture_of[static_cast<std::size_t>(index)] = static_cast<int>(m_scene.textures.size());
+        m_scene.textures.push_back(loaded->textures[static_cast<std::size_t>(index)]);
+      }
+      return texture_of[static_cast<std::size_t>(index)];
+    };
+    const auto num = [](double v) { return exact_number(v); };
+    for (MeshShape& mesh : loaded->meshes) {
+      const auto k = static_cast<std::size_t>(mesh.material);
+      if (material_of[k] < 0) {
+        const GltfMaterial& g = loaded->materials[k];
+        Material m;
+        m.name = path.filename().string() + "/" + g.name;
+        const bool textured = g.base_color_texture >= 0 || g.metallic_roughness_texture >= 0;
+        if (model == "ggx" && !textured) {
+          const Rgb base = g.base_color;
+          const Rgb kd = base * (1.0 - g.metallic);
+          const Rgb f0 = Rgb::gray(0.04 * (1.0 - g.metallic)) + base * g.metallic;
+          m.model = "ggx";
+          m.params = {{"kd", num(kd.r) + "," + num(kd.g) + "," + num(kd.b)},
+                      {"f0", num(f0.r) + "," + num(f0.g) + "," + num(f0.b)},
+                      {"roughness", num(std::max(g.roughness, 0.01))}};
+        } else {
+          m.model = "filament";
+          m.params = {{"base_color", num(g.base_color.r) + "," + num(g.base_color.g) + "," + num(g.base_color.b)},
+                      {"metallic", num(g.metallic)},
+                      {"perceptual_roughness", num(std::max(g.roughness, 0.01))}};
+          m.base_color_texture = texture(g.base_color_texture);
+          m.metallic_roughness_texture = texture(g.metallic_roughness_texture);
+        }
+        auto brdf = make_brdf(m.model, m.params);
+        if (!brdf) file_node.fail(path.string() + ": material '" + g.name + "': " + brdf.error().message);
+        m.brdf = std::shared_ptr<const Brdf>(std::move(brdf).value());
+        material_of[k] = static_cast<int>(m_scene.materials.size());
+        m_scene.materials.push_back(std::move(m));
+      }
+      transform_mesh(mesh, xf);
+      mesh.material = material_of[k];
       m_scene.meshes.push_back(std::move(mesh));
     }
   }
