@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -18,6 +19,8 @@
 #include "shadelab/render/accel.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/materials.h"
+#include "shadelab/render/threads.h"
+#include "shadelab/scene/limits.h"
 #include "shadelab/sampling/rng.h"
 
 namespace shadelab {
@@ -226,6 +229,7 @@ class GameShader {
 
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (auto limits = check_scene_limits(scene); !limits) return limits.error();
   GameShader shader(scene, options);
   if (auto ok = shader.prepare(); !ok) return ok.error();
   const int w = scene.camera.width;
@@ -239,7 +243,8 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
   RenderResult result;
   result.beauty = Image(w, h);
   const int threads = options.threads >= 0 ? options.threads : scene.settings.threads;
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  tbb::task_arena arena(arena_threads(threads));
+  std::atomic<std::uint64_t> nonfinite{0};
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
       for (int y = r.rows().begin(); y != r.rows().end(); ++y) {
@@ -252,7 +257,9 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
               const double py = y + (j + 0.5) / spp_side;
               const double sx = (2.0 * px / w - 1.0) * tan_half * aspect;
               const double sy = (1.0 - 2.0 * py / h) * tan_half;
-              sum += shader.shade(Ray{scene.camera.position, normalize(forward + right * sx + up * sy)});
+              const Rgb l = shader.shade(Ray{scene.camera.position, normalize(forward + right * sx + up * sy)});
+              if (!is_finite(l)) nonfinite.fetch_add(1, std::memory_order_relaxed);
+              sum += l;
             }
           }
           result.beauty.set(x, y, sum / (spp_side * spp_side));
@@ -261,6 +268,7 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
     });
   });
   result.stats.spp_done = spp_side * spp_side;
+  result.stats.nonfinite_samples = nonfinite.load();
   result.stats.camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(spp_side * spp_side);
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
