@@ -68,6 +68,7 @@ struct RenderCliOptions {
   bool no_shadows = false;
   bool no_specular_ambient = false;
   bool drop_pi = false;
+  bool sh_lights = false;
   bool json = false;
   bool progress = false;
 };
@@ -101,6 +102,18 @@ void run_render(const RenderCliOptions& o) {
   go.shadows = !o.no_shadows;
   go.specular_ambient = !o.no_specular_ambient;
   go.drop_pi = o.drop_pi;
+  go.directional_in_sh = o.sh_lights;
+  {
+    bool marked = o.sh_lights;
+    for (const auto& l : scene.lights) {
+      if (const auto* d = std::get_if<DirectionalLight>(&l)) marked = marked || d->game_sh;
+    }
+    if (o.mode == "game" && marked && go.diffuse != GameAmbient::sh9) {
+      throw UsageError("--ambient " + o.ambient + ": directional lights added to the SH9 ambient (--sh-lights or \"game\": "
+                       "\"sh\" in the scene) need --ambient sh9");
+    }
+    if (o.sh_lights && o.mode != "game") throw UsageError("--sh-lights applies to --mode game");
+  }
   go.threads = ro.threads;
   if (o.spp_given) go.spp = o.spp;
   const std::filesystem::path exr(o.out);
@@ -186,6 +199,8 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_flag("--no-shadows", o->no_shadows, "game mode: no shadow rays for punctual lights");
   sub->add_flag("--no-specular-ambient", o->no_specular_ambient, "game mode: no prefiltered specular");
   sub->add_flag("--drop-pi", o->drop_pi, "game mode, debug: forget the pi of the game light unit");
+  sub->add_flag("--sh-lights", o->sh_lights,
+                "game mode: add every directional light to the SH9 ambient (D3DX-style) instead of shading it per pixel");
   sub->add_flag("--json", o->json, "machine-readable summary");
   sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");
   sub->callback([o, sub, &command] {

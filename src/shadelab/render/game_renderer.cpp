@@ -58,6 +58,13 @@ class GameShader {
     if (auto ok = m_materials.prepare(m_scene); !ok) return ok.error();
     // Punctual lights as the engine sees them: radiometric E_perp here, the game colour is E_perp / pi.
     for (const auto& l : m_scene.lights) {
+      const auto* d = std::get_if<DirectionalLight>(&l);
+      if (d != nullptr && (d->game_sh || m_options.directional_in_sh) && m_options.diffuse == GameAmbient::sh9) {
+        // D3DX-style: the delta pi c delta(w - d) projected and scaled by 16/17 (sh.h), c = E_perp / pi.
+        m_sh_lights += sh9_directional_light(d->to_light, d->irradiance * inv_pi, true);
+        m_has_sh_lights = true;
+        continue;
+      }
       if (std::holds_alternative<DirectionalLight>(l) || std::holds_alternative<PointLight>(l) ||
           std::holds_alternative<SpotLight>(l)) {
         m_punctual.push_back(l);
@@ -86,6 +93,7 @@ class GameShader {
         m_specular = std::move(chain).value();
       }
     }
+    m_sh += m_sh_lights;  // the environment's coefficients (zero without one) and the D3DX-style lights
     // Per material: Phong exponent and the specular lobe's directional albedo over cos(theta_o).
     for (std::size_t i = 0; i < m_scene.materials.size(); ++i) {
       const Material& m = m_scene.materials[i];
@@ -160,7 +168,7 @@ class GameShader {
         l += f->eval(wi, wo) * colour_game * (unit * wi.z);
       }
     }
-    if (m_env.has_light()) {
+    if (m_env.has_light() || m_has_sh_lights) {
       const Vec3 n = sf.frame.n;
       if (m_options.diffuse != GameAmbient::none) {
         Rgb e_over_pi;
@@ -171,6 +179,9 @@ class GameShader {
         }
         l += f->diffuse_albedo() * e_over_pi;
       }
+    }
+    if (m_env.has_light()) {
+      const Vec3 n = sf.frame.n;
       if (m_options.specular_ambient && info.exponent > 0.0 && !m_specular.levels.empty()) {
         double n_phong = info.exponent;
         const Material& m = m_scene.materials[static_cast<std::size_t>(hit.material)];
@@ -220,6 +231,8 @@ class GameShader {
   MaterialSet m_materials;
   std::vector<SceneLight> m_punctual;
   Sh9 m_sh;
+  Sh9 m_sh_lights;  // directional lights added D3DX-style (game_sh)
+  bool m_has_sh_lights = false;
   CubeMap m_irradiance;
   PrefilteredCube m_specular;
   std::vector<MaterialInfo> m_info;

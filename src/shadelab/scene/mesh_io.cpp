@@ -226,9 +226,11 @@ class MaterialCheck final : public tinyobj::MaterialReader {
 };
 
 Result<MeshShape> read_obj(const std::filesystem::path& path) {
-  if (const std::string why = check_file(path, max_mesh_file_bytes); !why.empty()) return mesh_error(path, why);
+  if (const std::string why = check_file(path, max_mesh_file_bytes); !why.empty()) {
+    return mesh_error(path, "cannot read OBJ: " + why);
+  }
   std::ifstream file(path, std::ios::binary);
-  if (!file) return mesh_error(path, "cannot open the file");
+  if (!file) return mesh_error(path, "cannot read OBJ: cannot open the file");
   MaterialCheck materials(path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path());
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
@@ -676,7 +678,7 @@ std::string_view gltf_json(const std::string& bytes, bool binary) {
 Result<MeshShape> read_gltf(const std::filesystem::path& path) {
   const bool binary = lower_extension(path) == ".glb";
   auto bytes = read_text(path, max_mesh_file_bytes);
-  if (!bytes) return mesh_error(path, bytes.error().message);
+  if (!bytes) return mesh_error(path, "cannot read glTF: " + bytes.error().message);
   // tinygltf turns JSON "extras" into its own values by recursion: bound the nesting before it parses.
   if (json_depth(gltf_json(*bytes, binary), max_json_depth) > max_json_depth) {
     return mesh_error(path, "JSON nested deeper than " + std::to_string(max_json_depth) + " levels");

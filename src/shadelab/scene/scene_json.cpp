@@ -259,12 +259,20 @@ Vec3 position(const Node& n) {
   return p;
 }
 
-// A length (radius, scale): in [min_scene_length, max_scene_coordinate].
-double length_value(const Node& n) { return number_in(n, min_scene_length, false, max_scene_coordinate, false); }
+// A length (radius, scale): > 0, and within [min_scene_length, max_scene_coordinate] (scene/limits.h).
+double length_value(const Node& n) {
+  const double v = number_in(n, 0.0, true);
+  if (v < min_scene_length || v > max_scene_coordinate) {
+    n.fail("expected a length in [" + format_number(min_scene_length) + ", " + format_number(max_scene_coordinate) +
+           "] (the scene's limits), got " + describe(n.value()));
+  }
+  return v;
+}
 
 // An edge vector (a quad's u and v): its length in [min_scene_length, max_scene_coordinate].
 Vec3 edge(const Node& n) {
   const Vec3 v = vec3(n);
+  if (v.x == 0.0 && v.y == 0.0 && v.z == 0.0) n.fail("expected a non-zero vector, got " + describe(n.value()));
   const double len = length(v);
   if (!(len >= min_scene_length && len <= max_scene_coordinate)) {
     n.fail("expected a vector of length in [" + format_number(min_scene_length) + ", " +
@@ -797,9 +805,11 @@ class Parser {
     const std::string type = word(Node(node.value().at("type"), node.child_pointer("type")),
                                   {"directional", "point", "spot", "sphere", "hemisphere"});
     if (type == "directional") {
-      const Object o(node, {"type", "direction", "color", "intensity"}, "a directional light");
+      const Object o(node, {"type", "direction", "color", "intensity", "game"}, "a directional light");
       DirectionalLight l;
       l.to_light = direction(o.require("direction"));
+      // Game mode: shaded per pixel ("punctual", the default) or added to the SH9 ambient ("sh", D3DX-style).
+      if (auto n = o.get("game")) l.game_sh = word(*n, {"punctual", "sh"}) == "sh";
       const double value = o.has("intensity") ? non_negative(*o.get("intensity")) : 1.0;
       l.irradiance = bounded_light(value_node(o), radiometric(light_colour(o), value, m_units, LightQuantity::irradiance));
       m_scene.lights.emplace_back(l);
