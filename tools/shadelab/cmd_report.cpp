@@ -203,15 +203,16 @@ void run_report(const ReportOptions& o) {
       nlohmann::json entry = {{"material", scene.materials[m].name}, {"model", scene.materials[m].model}, {"pixels", f.pixels},
                               {"rmse", f.rmse}, {"relative_mse", f.relative_mse}, {"luminance_ratio", f.luminance_ratio}};
       std::string note;
-      if (const auto* wd = dynamic_cast<const WrappedDiffuse*>(scene.materials[m].brdf.get()); wd != nullptr && kind != "punctual") {
+      if (const auto* wd = dynamic_cast<const WrappedDiffuse*>(scene.materials[m].brdf.get()); wd != nullptr && kind == "environment") {
         const double w = wd->wrap();
         const double ratio = wrap_uniform_reference_over_game(w);
         entry["wrap"] = {{"w", w}, {"uniform_reference_over_game", ratio}, {"uniform_luminance_ratio", 1.0 / ratio}};
         note = fmt::format(" (wrap w = {:.3g}: under a uniform environment game kd, reference kd (1+2w)/(1+w)^2 = {:.4f} kd; "
                            "expected game/ref {:.4f})",
                            w, ratio, 1.0 / ratio);
-        wrap_lines.push_back(fmt::format("{} '{}' (w = {:.3g}): game kd, reference {:.4f} kd, expected luminance game/ref {:.4f}",
-                                         kind, scene.materials[m].name, w, ratio, 1.0 / ratio));
+        wrap_lines.push_back(fmt::format("'{}' (w = {:.3g}): under a uniform environment game kd, reference {:.4f} kd, "
+                                         "expected luminance game/ref {:.4f} (measured {:.4f})",
+                                         scene.materials[m].name, w, ratio, 1.0 / ratio, f.luminance_ratio));
       }
       materials.push_back(entry);
       rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4f}{}</td></tr>\n",
