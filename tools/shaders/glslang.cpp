@@ -54,6 +54,11 @@ std::string first_error_line(const std::string& log, const std::string& path, co
     for (std::size_t p = msg.find(path); !path.empty() && p != std::string::npos; p = msg.find(path)) {
       msg.replace(p, path.size(), display_name);
     }
+    // Without -V glslang names the source string by its number: "0:12: ..." -> "DISPLAY:12: ...".
+    const auto colon = msg.find(':');
+    if (colon != std::string::npos && colon > 0 && msg.find_first_not_of("0123456789") == colon) {
+      msg = display_name + msg.substr(colon);
+    }
     return msg;
   }
   return first_nonempty.empty() ? "the compiler failed without a message" : first_nonempty;

@@ -21,6 +21,18 @@ struct WebglResult {
 // $SHADELAB_CHROMIUM, else chromium (or chromium-browser) on PATH; empty if none.
 std::string chromium_program();
 
+struct WebglProgram {
+  std::string code;        // a GLSL ES 3.00 function file
+  std::string expression;  // in terms of vec3 wi, wo
+  std::vector<std::uint8_t> uniform;  // non-empty: the std140 bytes of uniform block `block_name`
+  std::string block_name;
+  std::string display_name;  // names the code in compiler errors
+};
+
+// Runs several programs over the same cases in one browser start (a start costs seconds); one result each.
+Result<std::vector<Result<WebglResult>>> run_webgl_batch(const std::vector<WebglProgram>& programs,
+                                                         const std::vector<float>& input);
+
 // Evaluates `expression` (in terms of vec3 wi, wo) over the cases (8 floats each: wi.xyz, 0, wo.xyz, 0). With
 // a non-empty `uniform`, the bytes fill the uniform block `block_name` (std140). Errors: the shader compiler's
 // first error line ("DISPLAY:LINE: ..."), or why the browser could not run it.
