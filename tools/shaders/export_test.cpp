@@ -152,6 +152,24 @@ TEST(Export, TwoExportsShareOneShader) {
   }
 }
 
+// The dialect's constant tables (as a model's E(mu, alpha) table would be) compile in every language and are
+// read with a run-time index.
+TEST(Export, ConstantTablesCompileInEveryLanguage) {
+  const std::string sl = "const int TABLE_SIZE = 4;\nconst real TABLE[TABLE_SIZE] = {0.5, 0.25,\n  0.125, 0.0625};\n"
+                         "inline rgb table_lookup(vec3 wi) {\n  int i = int(clamp(wi.z, 0.0, 0.999) * 4.0);\n"
+                         "  return rgb(TABLE[i]);\n}\n";
+  for (Lang lang : kLangs) {
+    auto text = translate(sl, lang, "table.sl");
+    ASSERT_TRUE(text.has_value()) << text.error().message;
+    auto spirv = compile_compute(lang, compute_harness(lang, *text, "table_lookup(wi)"), "table");
+    EXPECT_TRUE(spirv.has_value()) << lang_name(lang) << ": " << (spirv ? "" : spirv.error().message) << "\n" << *text;
+    if (lang == Lang::essl) {
+      auto ok = validate_essl300(*text, "table_lookup(wi)", "table");
+      EXPECT_TRUE(ok.has_value()) << (ok ? "" : ok.error().message);
+    }
+  }
+}
+
 // glslang's reflection (-q) lists each block member's byte offset: an independent reading of the layout rules.
 TEST(Export, UniformOffsetsAgreeWithGlslangReflection) {
   for (const auto& m : brdf_models()) {
