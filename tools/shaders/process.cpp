@@ -57,7 +57,8 @@ Result<bool> write_file(const std::filesystem::path& path, const std::string& co
 
 Result<std::string> read_file(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return make_error(path.string() + ": no such file");
+  if (!std::filesystem::exists(path, ec)) return make_error(path.string() + ": no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) return make_error(path.string() + ": not a regular file");
   std::ifstream f(path, std::ios::binary);
   if (!f) return make_error(path.string() + ": cannot read");
   std::ostringstream ss;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "export.h"
@@ -17,6 +18,8 @@
 namespace shadelab::shaders {
 
 namespace {
+
+constexpr std::uintmax_t kMaxSourceBytes = 16u << 20;
 
 Vec3 uniform_hemisphere(double u1, double u2) {
   const double z = u1;
@@ -212,6 +215,11 @@ Result<VerifyReport> verify_shader(const VerifyOptions& o) {
   std::string code = ex->text;
   std::string display = "exported shader";
   if (!o.source.empty()) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(o.source, ec);
+    if (!ec && size > kMaxSourceBytes) {
+      return make_error("--source: " + o.source + " is larger than 16 MiB, not a shader function file");
+    }
     auto text = read_file(o.source);
     if (!text) return make_error("--source: " + text.error().message);
     code = strip_version_directive(*text);

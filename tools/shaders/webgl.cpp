@@ -176,7 +176,7 @@ std::string chromium_program() {
 Result<std::vector<Result<WebglResult>>> run_webgl_batch(const std::vector<WebglProgram>& programs,
                                                          const std::vector<float>& input) {
   const std::string chromium = chromium_program();
-  if (chromium.empty()) return make_error("chromium not found (install Debian's chromium: scripts/setup.sh)");
+  if (chromium.empty()) return make_error("chromium not found (install Debian's chromium: scripts/setup.sh; or verify with --device vulkan)");
   if (input.size() % 8 != 0) return make_error("WebGL: the input holds 8 floats per case");
   const std::size_t cases = input.size() / 8;
   std::vector<float> wi(cases * 4), wo(cases * 4);
