@@ -11,6 +11,7 @@ packages=(
   libcairo2-dev fonts-dejavu-core
   libembree-dev libtinyobjloader-dev libtinygltf-dev
   blender-data
+  glslang-tools spirv-tools mesa-vulkan-drivers libvulkan-dev chromium
 )
 
 missing=()
