@@ -89,6 +89,7 @@ bool is_number(py::handle v) {
   if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v)) return false;
   if (PyFloat_Check(v.ptr()) || PyLong_Check(v.ptr())) return true;
   // NumPy scalars and 0-d arrays: anything that converts to float and is not a sequence.
+  if (py::isinstance<py::array>(v)) return py::reinterpret_borrow<py::array>(v).ndim() == 0;
   return py::hasattr(v, "__float__") && !PySequence_Check(v.ptr());
 }
 
@@ -98,7 +99,7 @@ bool is_number(py::handle v) {
 std::string param_text(py::handle v) {
   if (py::isinstance<py::str>(v)) return v.cast<std::string>();
   if (is_number(v)) return number_text(py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>());
-  if (PySequence_Check(v.ptr()) && !py::isinstance<py::bool_>(v)) {
+  if (PySequence_Check(v.ptr()) && !PyBytes_Check(v.ptr()) && !PyByteArray_Check(v.ptr())) {
     const py::sequence seq = py::reinterpret_borrow<py::sequence>(v);
     std::string text;
     bool groups = seq.size() > 0;

@@ -28,6 +28,9 @@ nlohmann::json to_json(py::handle obj, const std::string& pointer, int depth) {
   const std::string where = "scene: " + (pointer.empty() ? std::string("/") : pointer) + ": ";
   if (depth > max_nesting) fail(where + "nested deeper than " + std::to_string(max_nesting) + " levels");
   if (obj.is_none()) return nullptr;
+  if (py::isinstance<py::array>(obj) && py::reinterpret_borrow<py::array>(obj).ndim() == 0) {
+    return to_json(obj.attr("item")(), pointer, depth + 1);  // a NumPy 0-d array: its Python scalar
+  }
   if (py::isinstance<py::bool_>(obj)) return obj.cast<bool>();
   if (py::isinstance<py::str>(obj)) return obj.cast<std::string>();
   if (PyIndex_Check(obj.ptr())) {  // int and NumPy integers
