@@ -164,22 +164,19 @@ py::object eval(const PyBrdf& b, py::handle wi, py::handle wo, py::handle out) {
     o = output_buffer(out, shape, "out");
   }
   const Brdf& f = *b.f;
+  int which = 0;
   py::ssize_t bad = -1;
-  int bad_which = 0;
   {
     py::gil_scoped_release release;
-    for (py::ssize_t i = 0; i < p.count; ++i) {
-      Vec3 a = p.a.at(i * p.step_a);
-      Vec3 c = p.b.at(i * p.step_b);
-      if (!normalize_direction(a)) { bad = i * p.step_a; bad_which = 0; break; }
-      if (!normalize_direction(c)) { bad = i * p.step_b; bad_which = 1; break; }
-      const Rgb v = f.eval(a, c);
-      o[3 * i] = v.r;
-      o[3 * i + 1] = v.g;
-      o[3 * i + 2] = v.b;
-    }
+    bad = for_each_pair(p, normalize_direction, normalize_direction,
+                        [&](const Vec3& a, const Vec3& c, py::ssize_t i) {
+                          const Rgb v = f.eval(a, c);
+                          o[3 * i] = v.r;
+                          o[3 * i + 1] = v.g;
+                          o[3 * i + 2] = v.b;
+                        }, &which);
   }
-  if (bad >= 0) fail_direction(bad_which == 0 ? "wi" : "wo", bad_which == 0 ? p.a : p.b, bad);
+  if (bad >= 0) fail_direction(which == 0 ? "wi" : "wo", which == 0 ? p.a : p.b, bad);
   if (!out.is_none()) return py::reinterpret_borrow<py::object>(out);
   return result;
 }
@@ -195,19 +192,14 @@ py::object pdf(const PyBrdf& b, py::handle wi, py::handle wo, py::handle out) {
     o = output_buffer(out, {p.count}, "out");
   }
   const Brdf& f = *b.f;
+  int which = 0;
   py::ssize_t bad = -1;
-  int bad_which = 0;
   {
     py::gil_scoped_release release;
-    for (py::ssize_t i = 0; i < p.count; ++i) {
-      Vec3 a = p.a.at(i * p.step_a);
-      Vec3 c = p.b.at(i * p.step_b);
-      if (!normalize_direction(a)) { bad = i * p.step_a; bad_which = 0; break; }
-      if (!normalize_direction(c)) { bad = i * p.step_b; bad_which = 1; break; }
-      o[i] = f.pdf(a, c);
-    }
+    bad = for_each_pair(p, normalize_direction, normalize_direction,
+                        [&](const Vec3& a, const Vec3& c, py::ssize_t i) { o[i] = f.pdf(a, c); }, &which);
   }
-  if (bad >= 0) fail_direction(bad_which == 0 ? "wi" : "wo", bad_which == 0 ? p.a : p.b, bad);
+  if (bad >= 0) fail_direction(which == 0 ? "wi" : "wo", which == 0 ? p.a : p.b, bad);
   if (p.single) return py::float_(o[0]);
   if (!out.is_none()) return py::reinterpret_borrow<py::object>(out);
   return result;
@@ -223,30 +215,30 @@ py::tuple sample(const PyBrdf& b, py::handle wo, py::handle u) {
   double* pdf_d = pdf_out.mutable_data();
   double* w_d = weight_out.mutable_data();
   const Brdf& f = *b.f;
-  py::ssize_t bad_dir = -1;
-  py::ssize_t bad_u = -1;
+  const auto in_unit_cube = [](Vec3& r) {
+    const auto in_unit = [](double x) { return x >= 0.0 && x < 1.0; };  // false for NaN
+    return in_unit(r.x) && in_unit(r.y) && in_unit(r.z);
+  };
+  int which = 0;
+  py::ssize_t bad = -1;
   {
     py::gil_scoped_release release;
-    for (py::ssize_t i = 0; i < n; ++i) {
-      Vec3 o = p.a.at(i * p.step_a);
-      const Vec3 r = p.b.at(i * p.step_b);
-      if (!normalize_direction(o)) { bad_dir = i * p.step_a; break; }
-      const auto in_unit = [](double x) { return x >= 0.0 && x < 1.0; };
-      if (!in_unit(r.x) || !in_unit(r.y) || !in_unit(r.z)) { bad_u = i * p.step_b; break; }
-      const BrdfSample s = f.sample(o, {r.x, r.y}, r.z);
-      wi_d[3 * i] = s.wi.x;
-      wi_d[3 * i + 1] = s.wi.y;
-      wi_d[3 * i + 2] = s.wi.z;
-      pdf_d[i] = s.pdf;
-      w_d[3 * i] = s.weight.r;
-      w_d[3 * i + 1] = s.weight.g;
-      w_d[3 * i + 2] = s.weight.b;
-    }
+    bad = for_each_pair(p, normalize_direction, in_unit_cube,
+                        [&](const Vec3& o, const Vec3& r, py::ssize_t i) {
+                          const BrdfSample s = f.sample(o, {r.x, r.y}, r.z);
+                          wi_d[3 * i] = s.wi.x;
+                          wi_d[3 * i + 1] = s.wi.y;
+                          wi_d[3 * i + 2] = s.wi.z;
+                          pdf_d[i] = s.pdf;
+                          w_d[3 * i] = s.weight.r;
+                          w_d[3 * i + 1] = s.weight.g;
+                          w_d[3 * i + 2] = s.weight.b;
+                        }, &which);
   }
-  if (bad_dir >= 0) fail_direction("wo", p.a, bad_dir);
-  if (bad_u >= 0) {
-    const Vec3 r = p.b.at(bad_u);
-    fail(fmt::format("u: row {} ({}, {}, {}) has a value outside [0, 1)", bad_u, r.x, r.y, r.z));
+  if (bad >= 0 && which == 0) fail_direction("wo", p.a, bad);
+  if (bad >= 0) {
+    const Vec3 r = p.b.at(bad);
+    fail(fmt::format("u: row {} ({}, {}, {}) has a value outside [0, 1)", bad, r.x, r.y, r.z));
   }
   if (p.single) return py::make_tuple(wi_out, py::float_(pdf_d[0]), weight_out);
   return py::make_tuple(wi_out, pdf_out, weight_out);
