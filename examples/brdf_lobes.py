@@ -37,7 +37,7 @@ brdfs = {
     "lambert": shadelab.Brdf("lambert", kd=1),
     "phong-modified n=50": shadelab.Brdf("phong-modified", kd=0, ks=1, n=50),
     "blinn-phong-modified n=200": shadelab.Brdf("blinn-phong-modified", kd=0, ks=1, n=200),
-    "cook-torrance m=0.2": shadelab.Brdf("cook-torrance", kd=0, ks=1, m=0.2),
+    "cook-torrance m=0.2 F0=1": shadelab.Brdf("cook-torrance", kd=0, ks=1, m=0.2, f0=1),
     "ward alpha=0.15": shadelab.Brdf("ward", kd=0, ks=1, alpha=0.15),
 }
 
@@ -86,8 +86,9 @@ if plt is not None:
     for name, lobe in lobes.items():
         ax.plot(-angles, lobe / lobe.max(), label=name)  # matplotlib's angles grow anticlockwise
     ax.plot([-theta_o, -theta_o], [0, 1], "k--", lw=0.8, label="viewer")
-    ax.set_title(f"f_r cos(theta_i), viewer at {args.theta_in:g} deg (each lobe scaled to its peak)")
-    ax.legend(loc="lower left", fontsize=7, bbox_to_anchor=(0.0, -0.05))
+    ax.set_thetagrids(range(-90, 91, 30), labels=[f"{abs(a)}" for a in range(-90, 91, 30)])
+    ax.set_title(f"f_r cos(theta_i), viewer at {args.theta_in:g} deg (each lobe scaled to its peak)", fontsize=10)
+    ax.legend(loc="center left", fontsize=8, bbox_to_anchor=(1.0, 0.5))
     fig.savefig(args.out, dpi=120, bbox_inches="tight")
     print(f"wrote {args.out}")
 else:
