@@ -3,7 +3,8 @@
 #  2. builds the same program with the flags of the installed pkg-config file and runs it;
 #  3. imports the installed Python module with the prefix's site-packages on PYTHONPATH (when built);
 #  4. runs the installed CLI; checks the headers are there and the tests' files are not.
-# Arguments: BUILD_DIR SOURCE_DIR WORK_DIR GENERATOR CXX [PYTHON PYTHON_DIR].
+# Arguments: BUILD_DIR SOURCE_DIR WORK_DIR GENERATOR CXX [CXX_FLAGS] [PRELOAD] [PYTHON PYTHON_DIR]. CXX_FLAGS are
+# the build's (sanitizer flags must reach the consumer too); PRELOAD the sanitizer runtimes for Python.
 cmake_minimum_required(VERSION 3.25)
 
 function(run what)
@@ -31,7 +32,8 @@ endif()
 
 # 1. find_package.
 run("configure the consumer" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/cmake/consumer -B ${WORK_DIR}/consumer
-    -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_PREFIX_PATH=${prefix})
+    -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_PREFIX_PATH=${prefix}
+    "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}")
 run("build the consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/consumer)
 run("run the consumer" ${WORK_DIR}/consumer/shadelab_consumer ${WORK_DIR})
 if(NOT run_output MATCHES "shadelab consumer ok")
@@ -50,7 +52,8 @@ set(ENV{PKG_CONFIG_PATH} ${pc_dir})
 run("pkg-config" ${PKG_CONFIG} --cflags --libs shadelab)
 string(STRIP "${run_output}" pc_flags)
 separate_arguments(pc_flags UNIX_COMMAND "${pc_flags}")
-run("build with pkg-config flags" ${CXX} -std=c++20 -O1 ${SOURCE_DIR}/cmake/consumer/main.cpp ${pc_flags}
+separate_arguments(build_flags UNIX_COMMAND "${CXX_FLAGS}")
+run("build with pkg-config flags" ${CXX} -std=c++20 -O1 ${build_flags} ${SOURCE_DIR}/cmake/consumer/main.cpp ${pc_flags}
     -o ${WORK_DIR}/consumer_pc)
 run("run the pkg-config build" ${WORK_DIR}/consumer_pc ${WORK_DIR})
 message(STATUS "pkg-config: ${run_output}")
@@ -58,6 +61,10 @@ message(STATUS "pkg-config: ${run_output}")
 # 3. Python.
 if(PYTHON)
   set(ENV{PYTHONPATH} ${prefix}/${PYTHON_DIR})
+  if(PRELOAD)
+    set(ENV{LD_PRELOAD} ${PRELOAD})
+    set(ENV{ASAN_OPTIONS} detect_leaks=0)
+  endif()
   # A script file: the code's semicolons would split a command-line argument into a CMake list.
   file(WRITE ${WORK_DIR}/import_test.py [[
 import sys

@@ -276,7 +276,7 @@ py::dict check(const PyBrdf& b, py::handle angles_deg, py::handle samples) {
     }
   }
   if (!samples.is_none()) {
-    const long long s = samples.cast<long long>();
+    const long long s = to_integer(samples, "samples");
     if (s < 1000 || s > 100'000'000) fail(fmt::format("samples: {} is out of range [1000, 1e8]", s));
     options.chi_square.samples = static_cast<std::uint64_t>(s);
   }
@@ -328,7 +328,7 @@ Frame and units (docs/conventions.md): the local shading frame has the normal on
 light, wo toward the viewer. Directions are normalized as the CLI does (v / |v|); a zero or non-finite
 direction raises ValueError. eval returns f_r in 1/sr WITHOUT the cosine. The loops run in C++ with the GIL
 released, one thread per call (call from several Python threads to use several cores).)")
-      .def(py::init(&make), py::arg("name"))
+      .def(py::init(&make), py::arg("name"), "Brdf(name, **params)\n\nThe model `name` of models() with the given parameters.")
       .def_property_readonly("name", [](const PyBrdf& b) { return b.name; }, "The model's registry name.")
       .def_property_readonly("params", &params_dict,
                              "Every parameter's value (given or default), as a dict: float, (r, g, b), str or lobes.")

@@ -70,6 +70,15 @@ void fail_direction(const std::string& name, const Vectors& v, py::ssize_t row) 
                    d.z));
 }
 
+long long to_integer(py::handle v, const std::string& name) {
+  if (py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr())) fail(name + ": expected an integer");
+  const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr()));
+  int overflow = 0;
+  const long long x = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+  if (overflow != 0) fail(name + ": " + py::str(py::handle(i)).cast<std::string>() + " is too large");
+  return x;
+}
+
 std::vector<double> to_numbers(py::handle obj, const std::string& name, bool* scalar) {
   const DoubleArray arr = to_double_array(obj, name);
   if (arr.ndim() > 1) fail(name + ": expected a number or a 1-D sequence of numbers, got shape " + shape_text(arr));

@@ -108,6 +108,9 @@ py::ssize_t for_each_pair(const Pairs& p, CheckA check_a, CheckB check_b, Body b
 // "wi: row 3 (0, 0, 0) is not a direction (zero length or not finite)".
 [[noreturn]] void fail_direction(const std::string& name, const Vectors& v, py::ssize_t row);
 
+// An integer (int or a NumPy integer; not bool, not float) as long long, or a ValueError naming it.
+long long to_integer(py::handle v, const std::string& name);
+
 // A scalar or a 1-D sequence of numbers; *scalar tells which was given.
 std::vector<double> to_numbers(py::handle obj, const std::string& name, bool* scalar = nullptr);
 

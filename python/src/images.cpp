@@ -171,7 +171,7 @@ ShWindow parse_window(const std::string& w) {
 CubeMap environment(py::handle image, py::handle input_size) {
   int size = -1;
   if (!input_size.is_none()) {
-    const long long s = input_size.cast<long long>();
+    const long long s = to_integer(input_size, "input_size");
     if (s < 1 || s > max_environment_face_size) {
       fail(fmt::format("input_size: {} is out of range [1, {}]", s, max_environment_face_size));
     }

@@ -15,6 +15,9 @@ Conventions (docs/conventions.md): local shading frame with the normal on +Z; wi
 the viewer; f_r in 1/sr without the cosine; linear Rec.709 RGB. Bad input raises ValueError with the one line
 the command-line tool prints. Loops run in C++ with the GIL released.)";
   m.attr("__version__") = SHADELAB_VERSION;
+  // Each docstring starts with its Python signature; pybind11's own would name C++ types (handle).
+  pybind11::options options;
+  options.disable_function_signatures();
   shadelab::python::bind_brdf(m);
   shadelab::python::bind_analysis(m);
   shadelab::python::bind_light(m);

@@ -93,8 +93,7 @@ Scene load(py::handle scene, py::handle base_dir) {
 
 int optional_int(py::handle v, const char* name, int min) {
   if (v.is_none()) return -1;
-  if (py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr())) fail(std::string(name) + ": expected an integer");
-  const long long x = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr())).cast<long long>();
+  const long long x = to_integer(v, name);
   if (x < min) fail(fmt::format("{}: {} must be >= {}", name, x, min));  // as --spp, --threads, --max-depth
   if (x > INT_MAX) fail(fmt::format("{}: {} is too large", name, x));
   return static_cast<int>(x);

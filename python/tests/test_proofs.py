@@ -109,6 +109,12 @@ def test_check_angles_are_validated():
         shadelab.Brdf("lambert").check(angles_deg=[0, 90])
     with pytest.raises(ValueError, match="theta_deg: -1 is out of range"):
         shadelab.Brdf("lambert").albedo([-1])
+    with pytest.raises(ValueError, match="samples: expected an integer"):
+        shadelab.Brdf("lambert").check(samples=1e5)
+    with pytest.raises(ValueError, match=r"samples: 10 is out of range \[1000, 1e8\]"):
+        shadelab.Brdf("lambert").check(samples=10)
+    with pytest.raises(ValueError, match="theta_deg: expected an array of numbers"):
+        shadelab.Brdf("lambert").albedo("forty")
 
 
 def test_sh_of_a_constant_environment():
@@ -166,5 +172,7 @@ def test_bad_environments_raise():
         shadelab.bake_irradiance(np.ones((16, 32, 3)), size=0)
     with pytest.raises(ValueError, match=r"input_size: 4096 is out of range \[1, 2048\]"):
         shadelab.bake_sh(np.ones((16, 32, 3)), input_size=4096)
+    with pytest.raises(ValueError, match="input_size: expected an integer"):
+        shadelab.bake_sh(np.ones((16, 32, 3)), input_size=2.5)
     with pytest.raises(ValueError, match=r"image: cube faces need shape \(6, S, S, 3\)"):
         shadelab.bake_sh(np.ones((5, 8, 8, 3)))
