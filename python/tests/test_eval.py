@@ -75,10 +75,11 @@ def test_sample_returns_pdf_and_weight_consistent_with_eval(model):
     wi, pdf, weight = f.sample(wo, u)
     assert wi.shape == (n, 3) and pdf.shape == (n,) and weight.shape == (n, 3)
     np.testing.assert_allclose(np.linalg.norm(wi, axis=1), 1.0, rtol=1e-12)
-    np.testing.assert_allclose(pdf, f.pdf(wi, wo), rtol=1e-9)
+    # The contract's tolerance (brdf.h; the check's "sample weights" item): 1e-6 relative.
+    np.testing.assert_allclose(pdf, f.pdf(wi, wo), rtol=1e-6)
     up = (pdf > 0) & (wi[:, 2] > 0)
     expected = f.eval(wi[up], wo[up]) * wi[up, 2:3] / pdf[up, None]
-    np.testing.assert_allclose(weight[up], expected, rtol=1e-9, atol=1e-300)
+    np.testing.assert_allclose(weight[up], expected, rtol=1e-6, atol=1e-300)
     assert np.all(weight[~up] == 0.0)
 
 
