@@ -97,7 +97,7 @@ TEST(GgxSamplers, MeanWeightIsTheAlbedo) {
 
 double albedo_f1(const Brdf& f, double theta_deg) {
   AlbedoOptions o;
-  o.quadrature.rel_tol = 1e-7;
+  o.quadrature.rel_tol = 1e-6;  // ample for the furnace bound of 1e-3
   return directional_albedo(f, deg_to_rad(theta_deg), o).albedo.r;
 }
 

@@ -6,6 +6,10 @@
 
 namespace shadelab {
 
+std::optional<KernelBinding> Burley::kernel_binding() const {
+  return KernelBinding{"burley", {}}.add("kd", m_kd).add("roughness", m_roughness);
+}
+
 double Burley::pdf(const Vec3& wi, const Vec3& wo) const { return wo.z > 0.0 ? cosine_hemisphere_pdf(wi) : 0.0; }
 
 BrdfSample Burley::sample(const Vec3& wo, Vec2 u, double) const {

@@ -17,16 +17,19 @@ namespace shadelab {
 
 class Burley final : public Brdf {
  public:
-  Burley(const Rgb& kd, double roughness) : m_kd(kd), m_k(kernel::burley_prepare({kd, roughness})) {}
+  Burley(const Rgb& kd, double roughness)
+      : m_kd(kd), m_roughness(roughness), m_k(kernel::burley_prepare({kd, roughness})) {}
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::burley_eval(m_k, wi, wo); }
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
   // kd: what a game multiplies by diffuse irradiance / pi (Burley's factors are 1 at normal incidence
   // for roughness 0.25 and average near 1; the view-dependent part is left to the direct lights).
   Rgb diffuse_albedo() const override { return m_kd; }
+  std::optional<KernelBinding> kernel_binding() const override;
 
  private:
   Rgb m_kd;
+  double m_roughness;
   kernel::BurleyState m_k;
 };
 

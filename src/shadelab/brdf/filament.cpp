@@ -24,6 +24,17 @@ Filament::Filament(const Params& p) : LayeredBrdf(Rgb{}, 0.0), m_p(p), m_k(kerne
   m_p_diffuse = lobe_probability(Rgb(m_k.diffuse_colour).average(), f_avg.average());
 }
 
+std::optional<KernelBinding> Filament::kernel_binding() const {
+  const kernel::FilamentParams p = kernel_params(m_p);  // the parameters m_k was prepared from
+  return KernelBinding{"filament", {}}
+      .add("base_color", p.base_color)
+      .add("metallic", p.metallic)
+      .add("perceptual_roughness", p.perceptual_roughness)
+      .add("reflectance", p.reflectance)
+      .add("diffuse", p.diffuse)
+      .add("energy_compensation", p.energy_compensation);
+}
+
 bool Filament::is_reciprocal() const { return !(m_p.energy_compensation && Rgb(m_k.f0).max_component() > 0.0); }
 
 double Filament::specular_pdf(const Vec3& wi, const Vec3& wo) const {

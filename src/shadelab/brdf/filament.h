@@ -35,6 +35,7 @@ class Filament final : public LayeredBrdf {
   // The visible-normal samplers' densities jump at their support's edge below the horizon (brdf.h).
   bool pdf_smooth_below_horizon() const override { return false; }
   bool is_reciprocal() const override;
+  std::optional<KernelBinding> kernel_binding() const override;
   const kernel::FilamentState& state() const { return m_k; }
 
  protected:

@@ -45,6 +45,21 @@ Ggx::Ggx(const Params& p)
   m_p_diffuse = lobe_probability(diffuse, specular);
 }
 
+std::optional<KernelBinding> Ggx::kernel_binding() const {
+  const kernel::GgxParams& p = m_k.p;  // the parameters m_k was prepared from
+  return KernelBinding{"ggx", {}}
+      .add("kd", p.kd)
+      .add("ks", p.ks)
+      .add("alpha_x", p.alpha_x)
+      .add("alpha_y", p.alpha_y)
+      .add("f", p.f)
+      .add("f0", p.f0)
+      .add("ior", p.ior)
+      .add("k", p.k)
+      .add("g", p.g)
+      .add("ms", p.ms);
+}
+
 double Ggx::specular_pdf(const Vec3& wi, const Vec3& wo) const {
   switch (m_p.sampler) {
     case Sampler::ndf: return ggx_ndf_pdf(wi, wo, m_p.alpha_x, m_p.alpha_y);

@@ -55,6 +55,7 @@ class Ggx final : public LayeredBrdf {
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::ggx_eval(m_k, wi, wo); }
   // The visible-normal samplers' densities jump at their support's edge below the horizon (brdf.h).
   bool pdf_smooth_below_horizon() const override { return false; }
+  std::optional<KernelBinding> kernel_binding() const override;
 
   const Params& params() const { return m_p; }
   // The density of the specular sampler alone (wo above the horizon), for the variance analysis.

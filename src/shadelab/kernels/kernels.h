@@ -49,5 +49,7 @@ inline real ggx_energy_average_texel(int g, int row) {
 #include "shadelab/kernels/ggx.sl"
 #include "shadelab/kernels/burley.sl"
 #include "shadelab/kernels/filament.sl"
+#include "shadelab/kernels/game_shading.sl"
+#include "shadelab/kernels/sh9.sl"
 // clang-format on
 }  // namespace shadelab::kernel

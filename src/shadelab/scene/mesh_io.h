@@ -4,7 +4,8 @@
 // Contract:
 // - load_mesh picks the reader by extension, case-insensitive: .obj, .gltf, .glb; any other is an error.
 // - OBJ: every object and group of the file in one mesh; polygons are triangulated as fans; materials
-//   (.mtl) are ignored. A vertex is a distinct (position, normal, uv) index triple of the file. Normals and
+//   (.mtl) are ignored, but every mtllib that exists must be a regular file inside the OBJ's folder tree
+//   (or the OBJ is refused: tinyobjloader would open /dev/zero). A vertex is a distinct (position, normal, uv) index triple of the file. Normals and
 //   uvs are kept only when every face corner has one; uvs are flipped to the glTF convention (v -> 1 - v,
 //   OBJ's vt has its origin at the bottom left of the image, shadelab's texture uv at the top left).
 // - glTF: every primitive of every mesh instanced by the nodes of the default scene (the first scene when
@@ -18,6 +19,11 @@
 // - Normals are normalized; if any is zero or not finite, all normals are dropped (the renderer then uses
 //   the geometric normals). Positions must be finite and indices in range; a mesh without triangles is an
 //   error. Every error is one line that starts with the file's path.
+// - Files a glTF names (buffers, images) must be regular files inside its folder tree; "~" is not expanded.
+// - Limits (scene/limits.h): files up to max_mesh_file_bytes, glTF JSON up to max_json_depth levels, at most
+//   max_gltf_node_instances node visits (a DAG instances a node once per path) and max_scene_triangles
+//   triangles; accessor bounds are checked without overflow; the node hierarchy is visited without
+//   recursion. Running out of memory is an error, not an exception.
 // - MeshShape::source is the path as given; material is 0.
 #pragma once
 
@@ -33,27 +39,6 @@ namespace shadelab {
 Result<MeshShape> load_mesh(const std::filesystem::path& path);
 Result<MeshShape> load_obj(const std::filesystem::path& path);
 Result<MeshShape> load_gltf(const std::filesystem::path& path);  // .gltf (JSON) or .glb (binary)
-
-// A glTF file with its materials (pbrMetallicRoughness, glTF 2.0 section 3.9.2): the triangles split into one
-// mesh per material (MeshShape::material indexes `materials`; primitives without a material get glTF's
-// default material, appended last), and the images of the material textures decoded into `textures`
-// (baseColorTexture as sRGB colour, metallicRoughnessTexture as data: roughness in green, metallic in blue).
-// Texture transforms, texCoord sets other than 0, samplers' filters and wrap modes, alpha, emission, normal
-// and occlusion maps are not read; the geometry contract is load_gltf's.
-struct GltfMaterial {
-  std::string name;
-  Rgb base_color{1.0, 1.0, 1.0};  // baseColorFactor (linear RGB; alpha ignored)
-  double metallic = 1.0;          // metallicFactor
-  double roughness = 1.0;         // roughnessFactor (perceptual)
-  int base_color_texture = -1;          // index into GltfScene::textures
-  int metallic_roughness_texture = -1;  // index into GltfScene::textures
-};
-struct GltfScene {
-  std::vector<MeshShape> meshes;
-  std::vector<GltfMaterial> materials;
-  std::vector<Texture> textures;
-};
-Result<GltfScene> load_gltf_with_materials(const std::filesystem::path& path);
 
 // An affine map p -> linear p + translate. Normals go through the inverse transpose of `linear` and are
 // renormalized; a mirroring map (det < 0) reverses the triangles' winding. `linear` must be invertible.
