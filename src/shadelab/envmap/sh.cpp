@@ -4,9 +4,17 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "shadelab/envmap/latlong.h"
+#include "shadelab/envmap/simd.h"
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 
 namespace shadelab {
 
@@ -36,98 +44,229 @@ BandFactors sh_window_factors(ShWindow window) {
 
 namespace {
 
-// Sums of one face row, in float (at most a few thousand terms), returned as 27 numbers: 9 bases x RGB.
-using RowSums = std::array<double, 27>;
+using namespace simd;
 
-template <int Face>
-void project_row(const float* rgb, const CubeFaceTexel* t, int n, RowSums& out) {
-  std::array<float, 27> acc{};
-  for (int x = 0; x < n; ++x) {
-    const float a = t[x].a, b = t[x].b, c = t[x].c, w = t[x].w;
-    float dx, dy, dz;  // the face's direction: the inverse of table 8.19
-    if constexpr (Face == 0) { dx = c; dy = -b; dz = -a; }
-    else if constexpr (Face == 1) { dx = -c; dy = -b; dz = a; }
-    else if constexpr (Face == 2) { dx = a; dy = c; dz = b; }
-    else if constexpr (Face == 3) { dx = a; dy = -c; dz = -b; }
-    else if constexpr (Face == 4) { dx = a; dy = -b; dz = c; }
-    else { dx = -a; dy = -b; dz = -c; }
-    const float basis[9] = {static_cast<float>(sh_c0) * w,
-                            static_cast<float>(-sh_c1) * dy * w,
-                            static_cast<float>(sh_c1) * dz * w,
-                            static_cast<float>(-sh_c1) * dx * w,
-                            static_cast<float>(sh_c2) * dx * dy * w,
-                            static_cast<float>(-sh_c2) * dy * dz * w,
-                            static_cast<float>(sh_c3) * (3.0f * dz * dz - 1.0f) * w,
-                            static_cast<float>(-sh_c2) * dx * dz * w,
-                            static_cast<float>(sh_c4) * (dx * dx - dy * dy) * w};
-    const float r = rgb[3 * x], g = rgb[3 * x + 1], bl = rgb[3 * x + 2];
-    for (int i = 0; i < 9; ++i) {
-      acc[static_cast<std::size_t>(3 * i)] += basis[i] * r;
-      acc[static_cast<std::size_t>(3 * i + 1)] += basis[i] * g;
-      acc[static_cast<std::size_t>(3 * i + 2)] += basis[i] * bl;
+// The projection kernel: for one row of texels (RGB interleaved) and five weight arrays g_k, the 15 sums
+// sum_x L_c(x) g_k(x), in float with 8 independent lanes (the row is at most a few thousand texels). The
+// SH9 projection of a cube row and of a lat-long ring both reduce to five such weights (see below), so a
+// pass reads each texel once, does 15 multiply-adds on it and keeps 15 accumulators in registers.
+SHADELAB_INLINE void row_sums5_impl(const float* rgb, const float* const g[5], int n, float out[15]) {
+  f8 acc[15] = {};
+  int x = 0;
+  for (; x + 8 <= n; x += 8) {
+    const f8 v0 = load8(rgb + 3 * x), v1 = load8(rgb + 3 * x + 8), v2 = load8(rgb + 3 * x + 16);
+    // De-interleave r0 g0 b0 r1 g1 b1 ... into R, G, B.
+    typedef std::int32_t m8 __attribute__((vector_size(32)));
+    const f8 r01 = __builtin_shuffle(v0, v1, m8{0, 3, 6, 9, 12, 15, 0, 0});
+    const f8 g01 = __builtin_shuffle(v0, v1, m8{1, 4, 7, 10, 13, 0, 0, 0});
+    const f8 b01 = __builtin_shuffle(v0, v1, m8{2, 5, 8, 11, 14, 0, 0, 0});
+    const f8 r = __builtin_shuffle(r01, v2, m8{0, 1, 2, 3, 4, 5, 10, 13});
+    const f8 gg = __builtin_shuffle(g01, v2, m8{0, 1, 2, 3, 4, 8, 11, 14});
+    const f8 b = __builtin_shuffle(b01, v2, m8{0, 1, 2, 3, 4, 9, 12, 15});
+    for (int k = 0; k < 5; ++k) {
+      const f8 w = load8(g[k] + x);
+      acc[3 * k] += w * r;
+      acc[3 * k + 1] += w * gg;
+      acc[3 * k + 2] += w * b;
     }
   }
-  for (std::size_t i = 0; i < 27; ++i) out[i] = static_cast<double>(acc[i]);
+  for (int k = 0; k < 15; ++k) out[k] = hsum(acc[k]);
+  for (; x < n; ++x) {
+    for (int k = 0; k < 5; ++k) {
+      const float w = g[k][x];
+      out[3 * k] += w * rgb[3 * x];
+      out[3 * k + 1] += w * rgb[3 * x + 1];
+      out[3 * k + 2] += w * rgb[3 * x + 2];
+    }
+  }
 }
 
-Sh9 from_sums(const RowSums& s) {
+SHADELAB_TARGET_AVX2 void row_sums5_avx2(const float* rgb, const float* const g[5], int n, float out[15]) {
+  row_sums5_impl(rgb, g, n, out);
+}
+void row_sums5_base(const float* rgb, const float* const g[5], int n, float out[15]) { row_sums5_impl(rgb, g, n, out); }
+
+using RowSums5 = std::array<double, 15>;
+
+// The nine SH9 coefficients from the ten second-order moments sum L w d_i d_j, sum L w d_i, sum L w
+// (per channel): index 0 = 1; 1, 2, 3 = x, y, z; 4 xy, 5 yz, 6 xz, 7 xx, 8 yy, 9 zz.
+using Moments = std::array<Rgb, 10>;
+Sh9 from_moments(const Moments& m) {
   Sh9 sh;
-  for (std::size_t i = 0; i < 9; ++i) sh.c[i] = {s[3 * i], s[3 * i + 1], s[3 * i + 2]};
+  sh.c[0] = m[0] * sh_c0;
+  sh.c[1] = m[2] * -sh_c1;
+  sh.c[2] = m[3] * sh_c1;
+  sh.c[3] = m[1] * -sh_c1;
+  sh.c[4] = m[4] * sh_c2;
+  sh.c[5] = m[5] * -sh_c2;
+  sh.c[6] = (m[9] * 3.0 - m[0]) * sh_c3;
+  sh.c[7] = m[6] * -sh_c2;
+  sh.c[8] = (m[7] - m[8]) * sh_c4;
   return sh;
+}
+
+// Face f's direction is a signed permutation of its local (a, b, c) = (sc, tc, 1) / |(sc, tc, 1)|
+// (cubemap.h): world component i = sign[f][i] * local[perm[f][i]].
+constexpr int face_perm[6][3] = {{2, 1, 0}, {2, 1, 0}, {0, 2, 1}, {0, 2, 1}, {0, 1, 2}, {0, 1, 2}};
+constexpr double face_sign[6][3] = {{1, -1, -1}, {-1, -1, 1}, {1, 1, 1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, -1}};
+
+// Per-(x, y) weights of an N x N face, shared by the six faces: the exact solid angle w and the inverse
+// distance c = 1 / sqrt(1 + sc^2 + tc^2), float, row-major. Cached per size.
+struct FaceWeights {
+  std::vector<float> w, c, sc;
+};
+const FaceWeights& face_weights(int size) {
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<FaceWeights>> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& entry = cache[size];
+  if (!entry) {
+    auto t = std::make_unique<FaceWeights>();
+    const auto n = static_cast<std::size_t>(size);
+    const std::vector<double>& omega = cube_face_solid_angles(size);
+    t->w.resize(n * n);
+    t->c.resize(n * n);
+    t->sc.resize(n + 8);
+    for (std::size_t x = 0; x < n; ++x) t->sc[x] = static_cast<float>((2.0 * static_cast<double>(x) + 1.0) / size - 1.0);
+    for (std::size_t y = 0; y < n; ++y) {
+      const double tc = (2.0 * static_cast<double>(y) + 1.0) / size - 1.0;
+      for (std::size_t x = 0; x < n; ++x) {
+        const double sc = (2.0 * static_cast<double>(x) + 1.0) / size - 1.0;
+        t->w[y * n + x] = static_cast<float>(omega[y * n + x]);
+        t->c[y * n + x] = static_cast<float>(1.0 / std::sqrt(1.0 + sc * sc + tc * tc));
+      }
+    }
+    entry = std::move(t);
+  }
+  return *entry;
 }
 
 }  // namespace
 
+// The cube projection. In a face row (tc fixed) the local direction is (a, b, c) = (sc c, tc c, c), so every
+// second-order moment of the row is a row constant times one of five per-texel weights
+//   g0 = w, g1 = w c, g2 = w c^2, g3 = w c sc, g4 = w c^2 sc:
+//   sum w = S0, sum w a = S3, sum w b = tc S1, sum w c = S1, sum w ab = tc S4, sum w ac = S4, sum w bc = tc S2,
+//   sum w b^2 = tc^2 S2, sum w c^2 = S2, sum w a^2 = S0 - (1 + tc^2) S2 (a^2 + b^2 + c^2 = 1),
+// with S_k = sum L g_k. The weights depend on (x, y) only, so they are formed once per row and serve all
+// six faces; each face's world moments are its signed permutation of the local ones.
 Sh9 project_sh9(const CubeMap& cube) {
   const int n = cube.size;
-  const auto& table = cube_face_table(n);
-  // One partial sum per (face, row), summed afterwards in a fixed order: the result does not depend on how
-  // TBB splits the work, so it is the same for any thread count.
-  std::vector<RowSums> rows(static_cast<std::size_t>(6 * n));
-  tbb::parallel_for(tbb::blocked_range<int>(0, 6 * n), [&](const tbb::blocked_range<int>& range) {
-    for (int k = range.begin(); k != range.end(); ++k) {
-      const int face = k / n;
-      const int y = k % n;
-      const float* rgb = cube.faces[static_cast<std::size_t>(face)].data.data() + static_cast<std::size_t>(y) * n * 3;
-      const CubeFaceTexel* t = table.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(n);
-      RowSums& out = rows[static_cast<std::size_t>(k)];
-      switch (face) {
-        case 0: project_row<0>(rgb, t, n, out); break;
-        case 1: project_row<1>(rgb, t, n, out); break;
-        case 2: project_row<2>(rgb, t, n, out); break;
-        case 3: project_row<3>(rgb, t, n, out); break;
-        case 4: project_row<4>(rgb, t, n, out); break;
-        default: project_row<5>(rgb, t, n, out); break;
+  const auto nn = static_cast<std::size_t>(n);
+  const FaceWeights& fw = face_weights(n);
+  const bool avx = cpu_has_avx2_fma();
+  // Local moments per (row, face), summed afterwards in a fixed order: the result does not depend on how
+  // TBB splits the rows, so it is the same for any thread count.
+  std::vector<std::array<Moments, 6>> rows(nn);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& range) {
+    std::vector<float> g(5 * (nn + 8));
+    for (int y = range.begin(); y != range.end(); ++y) {
+      const auto yy = static_cast<std::size_t>(y);
+      const float* w = fw.w.data() + yy * nn;
+      const float* c = fw.c.data() + yy * nn;
+      float* g0 = g.data();
+      float* g1 = g0 + nn + 8;
+      float* g2 = g1 + nn + 8;
+      float* g3 = g2 + nn + 8;
+      float* g4 = g3 + nn + 8;
+      for (std::size_t x = 0; x < nn; ++x) {
+        g0[x] = w[x];
+        g1[x] = w[x] * c[x];
+        g2[x] = g1[x] * c[x];
+        g3[x] = g1[x] * fw.sc[x];
+        g4[x] = g2[x] * fw.sc[x];
+      }
+      const float* const gk[5] = {g0, g1, g2, g3, g4};
+      const double tc = (2.0 * y + 1.0) / n - 1.0;
+      for (int f = 0; f < 6; ++f) {
+        float s[15] = {};
+        const float* rgb = cube.faces[static_cast<std::size_t>(f)].data.data() + yy * nn * 3;
+        if (avx) {
+          row_sums5_avx2(rgb, gk, n, s);
+        } else {
+          row_sums5_base(rgb, gk, n, s);
+        }
+        auto sum = [&](int k) { return Rgb{s[3 * k], s[3 * k + 1], s[3 * k + 2]}; };
+        const Rgb s0 = sum(0), s1 = sum(1), s2 = sum(2), s3 = sum(3), s4 = sum(4);
+        // Local moments: index 0 = 1, 1 a, 2 b, 3 c, then the products of local axes (i, j).
+        const Rgb first[3] = {s3, s1 * tc, s1};
+        const Rgb second[3][3] = {{s0 - s2 * (1.0 + tc * tc), s4 * tc, s4},
+                                  {s4 * tc, s2 * (tc * tc), s2 * tc},
+                                  {s4, s2 * tc, s2}};
+        Moments& m = rows[yy][static_cast<std::size_t>(f)];
+        const int* p = face_perm[f];
+        const double* sg = face_sign[f];
+        m[0] = s0;
+        for (int i = 0; i < 3; ++i) m[static_cast<std::size_t>(1 + i)] = first[p[i]] * sg[i];
+        m[4] = second[p[0]][p[1]] * (sg[0] * sg[1]);
+        m[5] = second[p[1]][p[2]] * (sg[1] * sg[2]);
+        m[6] = second[p[0]][p[2]] * (sg[0] * sg[2]);
+        m[7] = second[p[0]][p[0]];
+        m[8] = second[p[1]][p[1]];
+        m[9] = second[p[2]][p[2]];
       }
     }
   });
-  RowSums total{};
-  for (const auto& r : rows) {
-    for (std::size_t i = 0; i < 27; ++i) total[i] += r[i];
-  }
-  return from_sums(total);
+  Moments total{};
+  for (const auto& r : rows)
+    for (const Moments& m : r)
+      for (std::size_t i = 0; i < 10; ++i) total[i] += m[i];
+  return from_moments(total);
 }
 
+// The lat-long projection: on a ring (theta fixed) d = (sin t cos phi, cos t, sin t sin phi), so every
+// moment is a ring constant times one of the column weights 1, cos phi, sin phi, cos 2 phi, sin 2 phi
+// (cos^2 = (1 + cos 2 phi)/2, sin^2 = (1 - cos 2 phi)/2, cos sin = sin 2 phi / 2), times the ring's texel
+// solid angle.
 Sh9 project_sh9(const Image& latlong) {
   const int w = latlong.width;
   const int h = latlong.height;
-  std::vector<Sh9> rows(static_cast<std::size_t>(h));
+  const auto ww = static_cast<std::size_t>(w);
+  std::vector<float> table(5 * (ww + 8), 0.0f);
+  for (std::size_t x = 0; x < ww; ++x) {
+    const double phi = two_pi * ((static_cast<double>(x) + 0.5) / w - 0.5);
+    table[x] = 1.0f;
+    table[(ww + 8) + x] = static_cast<float>(std::cos(phi));
+    table[2 * (ww + 8) + x] = static_cast<float>(std::sin(phi));
+    table[3 * (ww + 8) + x] = static_cast<float>(std::cos(2.0 * phi));
+    table[4 * (ww + 8) + x] = static_cast<float>(std::sin(2.0 * phi));
+  }
+  const float* const gk[5] = {table.data(), table.data() + (ww + 8), table.data() + 2 * (ww + 8), table.data() + 3 * (ww + 8),
+                              table.data() + 4 * (ww + 8)};
+  const bool avx = cpu_has_avx2_fma();
+  std::vector<Moments> rows(static_cast<std::size_t>(h));
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& range) {
     for (int y = range.begin(); y != range.end(); ++y) {
-      const double d_omega = latlong_texel_solid_angle(y, w, h);
-      Sh9 acc;
-      for (int x = 0; x < w; ++x) {
-        const Vec3 d = latlong_direction((x + 0.5) / w, (y + 0.5) / h);
-        const ShBasis b = sh9_basis(d);
-        const Rgb l = latlong.at(x, y) * d_omega;
-        for (std::size_t i = 0; i < 9; ++i) acc.c[i] += l * b[i];
+      float s[15] = {};
+      const float* rgb = latlong.data.data() + static_cast<std::size_t>(y) * ww * 3;
+      if (avx) {
+        row_sums5_avx2(rgb, gk, w, s);
+      } else {
+        row_sums5_base(rgb, gk, w, s);
       }
-      rows[static_cast<std::size_t>(y)] = acc;
+      auto sum = [&](int k) { return Rgb{s[3 * k], s[3 * k + 1], s[3 * k + 2]}; };
+      const Rgb one = sum(0), cp = sum(1), sp = sum(2), c2 = sum(3), s2 = sum(4);
+      const double theta = pi * (y + 0.5) / h;
+      const double st = std::sin(theta), ct = std::cos(theta);
+      const double d_omega = latlong_texel_solid_angle(y, w, h);
+      Moments& m = rows[static_cast<std::size_t>(y)];
+      m[0] = one;
+      m[1] = cp * st;
+      m[2] = one * ct;
+      m[3] = sp * st;
+      m[4] = cp * (st * ct);
+      m[5] = sp * (st * ct);
+      m[6] = s2 * (0.5 * st * st);
+      m[7] = (one + c2) * (0.5 * st * st);
+      m[8] = one * (ct * ct);
+      m[9] = (one - c2) * (0.5 * st * st);
+      for (Rgb& v : m) v *= d_omega;
     }
   });
-  Sh9 total;
-  for (const auto& r : rows) total += r;
-  return total;
+  Moments total{};
+  for (const Moments& m : rows)
+    for (std::size_t i = 0; i < 10; ++i) total[i] += m[i];
+  return from_moments(total);
 }
 
 Sh9 project_sh9(const std::function<Rgb(const Vec3&)>& f, int size) {
