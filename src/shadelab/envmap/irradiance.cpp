@@ -20,6 +20,7 @@ namespace shadelab {
 CubeMap downsample_cube(const CubeMap& cube) {
   if (cube.size % 2 != 0 || cube.size < 2) return cube;
   const int n = cube.size / 2;
+  const std::vector<double>& omega = cube_face_solid_angles(cube.size);
   CubeMap out(n);
   for (int f = 0; f < 6; ++f) {
     for (int y = 0; y < n; ++y) {
@@ -28,7 +29,7 @@ CubeMap downsample_cube(const CubeMap& cube) {
         double w = 0.0;
         for (int j = 0; j < 2; ++j) {
           for (int i = 0; i < 2; ++i) {
-            const double a = cube_texel_solid_angle(2 * x + i, 2 * y + j, cube.size);
+            const double a = omega[static_cast<std::size_t>(2 * y + j) * static_cast<std::size_t>(cube.size) + static_cast<std::size_t>(2 * x + i)];
             sum += cube.texel(f, 2 * x + i, 2 * y + j) * a;
             w += a;
           }
