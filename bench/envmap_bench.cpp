@@ -11,14 +11,19 @@
 // - irradiance_from_cube/N: the same from its 6 x 256^2 cube;
 // - latlong_to_cube_exact / _bilinear: the exact area-weighted lat-long -> 6 x 256^2 resampling against the
 //   former 4 x 4 bilinear point samples;
-// - prefilter_chain: the Phong chain 256 .. 1 (9 levels) from 6 x 256^2.
+// - irradiance_per_texel_sum/32: the per-texel sum over the same 6 x 256^2 input (the peer in this run);
+// - prefilter_chain: the Phong chain 256 .. 1 (9 levels) from 6 x 256^2, with its error against the brute
+//   force per level and the brute-force chain's time extrapolated from measured directions.
 //
 //   ./build/release/bench/envmap_bench     (or bench/run.sh for everything with the table)
 #include <benchmark/benchmark.h>
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <chrono>
 #include <cmath>
+#include <optional>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -198,6 +203,24 @@ void irradiance_from_cube(benchmark::State& state) {
 }
 BENCHMARK(irradiance_from_cube)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The per-texel sum E(n) = sum L max(0, n.w) dOmega over the same 6 x 256^2 input (what irradiance_from_cube
+// is exact against), for 96 spread output directions on 2 threads; items = output texels, so the ratio of
+// items_per_second to irradiance_from_cube's is the speed-up over summing every emitter per texel.
+void irradiance_per_texel_sum(benchmark::State& state) {
+  const CubeMap& c = hdri_cube();
+  const int n = static_cast<int>(state.range(0));
+  constexpr int count = 96;
+  std::vector<Rgb> out(count);
+  for (auto _ : state) {
+    tbb::parallel_for(0, count, [&](int k) {
+      out[static_cast<std::size_t>(k)] = irradiance_brute_force(c, texel_direction(k % 6, (k * 7) % n, (k * 13) % n, n));
+    });
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(state.iterations() * count);
+}
+BENCHMARK(irradiance_per_texel_sum)->Arg(32)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 void latlong_to_cube_exact(benchmark::State& state) {
   const Image& img = hdri();
   for (auto _ : state) benchmark::DoNotOptimize(latlong_to_cube(img, 256));
@@ -210,11 +233,71 @@ void latlong_to_cube_bilinear(benchmark::State& state) {
 }
 BENCHMARK(latlong_to_cube_bilinear)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The Phong chain 256 .. 1 from 6 x 256^2 (9 levels, exponents 2048 .. 2), with its error against the
+// brute-force lobe convolution of the same input (prefilter_brute_force, double, every texel) at 48 spread
+// texels per level: counters max_err_<i> and mean_err_<i> (relative, green channel), max_err (over levels).
+// brute_force_chain_ms: the brute-force chain's time on 2 threads, extrapolated from the measured time of 16
+// directions per level to all 6 N^2 texels of each level.
+struct ChainCheck {
+  std::vector<double> max_err, mean_err;
+  double brute_seconds = 0.0;
+};
+const ChainCheck& chain_check(const PrefilteredCube& p, const CubeMap& c) {
+  static const ChainCheck check = [&] {
+    ChainCheck k;
+    for (std::size_t i = 0; i < p.levels.size(); ++i) {
+      const CubeMap& level = p.levels[i];
+      constexpr int samples = 48;
+      std::vector<double> err(samples);
+      tbb::parallel_for(0, samples, [&](int j) {
+        const int f = j % 6, x = (j * 7 + 3) % level.size, y = (j * 11 + 5) % level.size;
+        const Rgb ref = prefilter_brute_force(c, texel_direction(f, x, y, level.size), p.exponents[i]);
+        err[static_cast<std::size_t>(j)] = std::abs(level.texel(f, x, y).g - ref.g) / ref.g;
+      });
+      double mx = 0.0, mean = 0.0;
+      for (double e : err) {
+        mx = std::max(mx, e);
+        mean += e / samples;
+      }
+      k.max_err.push_back(mx);
+      k.mean_err.push_back(mean);
+      constexpr int timed = 16;
+      std::vector<Rgb> sink(timed);
+      const auto t0 = std::chrono::steady_clock::now();
+      tbb::parallel_for(0, timed, [&](int j) {
+        sink[static_cast<std::size_t>(j)] = prefilter_brute_force(c, texel_direction(j % 6, j % level.size, (3 * j) % level.size, level.size), p.exponents[i]);
+      });
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      benchmark::DoNotOptimize(sink.data());
+      k.brute_seconds += s / timed * 6.0 * level.size * level.size;
+    }
+    return k;
+  }();
+  return check;
+}
+
 void prefilter_chain(benchmark::State& state) {
   const CubeMap& c = hdri_cube();
   PrefilterOptions o;
   o.size = 256;
-  for (auto _ : state) benchmark::DoNotOptimize(prefilter_specular(c, o));
+  std::optional<PrefilteredCube> last;
+  for (auto _ : state) {
+    auto p = prefilter_specular(c, o);
+    if (!p) {
+      state.SkipWithError(p.error().message.c_str());
+      return;
+    }
+    last = std::move(p).value();
+  }
+  const ChainCheck& k = chain_check(*last, c);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < k.max_err.size(); ++i) {
+    state.counters["max_err_" + std::to_string(i)] = k.max_err[i];
+    state.counters["mean_err_" + std::to_string(i)] = k.mean_err[i];
+    worst = std::max(worst, k.max_err[i]);
+  }
+  state.counters["max_err"] = worst;
+  state.counters["brute_force_chain_ms"] = 1e3 * k.brute_seconds;
 }
 BENCHMARK(prefilter_chain)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 

@@ -9,17 +9,12 @@
 
 namespace shadelab {
 
+// The enum's order is the kernel's BLINN_PHONG_NORMALIZATION_* numbering.
+static_assert(static_cast<int>(BlinnPhong::Normalization::upper) == kernel::BLINN_PHONG_NORMALIZATION_UPPER &&
+              static_cast<int>(BlinnPhong::Normalization::exact) == kernel::BLINN_PHONG_NORMALIZATION_EXACT);
+
 double BlinnPhong::normalization_factor(double n, Normalization normalization, bool modified) {
-  const double p = std::exp2(-0.5 * n);  // 2^(-n/2)
-  switch (normalization) {
-    case Normalization::none: return 1.0;
-    case Normalization::exact:
-      return modified ? (n + 2.0) * (n + 4.0) / (8.0 * pi * (p + n))  // zoo, Blinn-Phong (modified)
-                      : (n + 2.0) / (4.0 * pi * (2.0 - p));           // zoo, Blinn-Phong
-    case Normalization::lower: return modified ? (n + 6.0) / (8.0 * pi) : (n + 2.0) / (8.0 * pi);
-    case Normalization::upper: return modified ? (n + 8.0) / (8.0 * pi) : (n + 4.0) / (8.0 * pi);
-  }
-  return 1.0;
+  return kernel::blinn_phong_normalization(n, static_cast<int>(normalization), modified ? 1 : 0);
 }
 
 namespace {
@@ -37,16 +32,19 @@ BlinnPhong::BlinnPhong(const Rgb& kd, const Rgb& ks, double n, Normalization nor
                   lobe_probability(normalization == Normalization::none ? kd.average() * pi : kd.average(),
                                    ks.average() * normalization_factor(n, normalization, modified) * 8.0 * pi /
                                        (n + 2.0))),
-      m_ks_scaled(ks * normalization_factor(n, normalization, modified)),
+      m_kp{kd, ks, n, static_cast<int>(normalization), modified ? 1 : 0},
+      m_k(kernel::blinn_phong_prepare(m_kp)),
       m_ks(ks),
       m_n(n),
       m_modified(modified) {}
 
-Rgb BlinnPhong::specular_eval(const Vec3& wi, const Vec3& wo) const {
-  const Vec3 h = half_vector(wi, wo);
-  if (h.z <= 0.0) return {};
-  const double lobe = std::pow(h.z, m_n);
-  return m_modified ? m_ks_scaled * lobe : m_ks_scaled * (lobe / safe_divisor(wi.z));
+std::optional<KernelBinding> BlinnPhong::kernel_binding() const {
+  return KernelBinding{"blinn_phong", {}}
+      .add("kd", m_kp.kd)
+      .add("ks", m_kp.ks)
+      .add("n", m_kp.n)
+      .add("normalization", m_kp.normalization)
+      .add("modified", m_kp.modified);
 }
 
 double BlinnPhong::specular_pdf(const Vec3& wi, const Vec3& wo) const {

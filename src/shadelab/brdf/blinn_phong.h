@@ -7,10 +7,12 @@
 //   blinn-phong           exact (n+2)/(4 pi (2 - 2^(-n/2))),   lower (n+2)/(8 pi),   upper (n+4)/(8 pi)
 //   blinn-phong-modified  exact (n+2)(n+4)/(8 pi (2^(-n/2)+n)), lower (n+6)/(8 pi), upper (n+8)/(8 pi)
 // kd' = kd/pi when normalized, kd with normalization = none (the lecture's unnormalized form, N = 1).
+// eval is the kernel kernels/blinn_phong.sl (the text shaders also use).
 // Sampling: H from the power-cosine lobe (n+1)/(2 pi) (N.H)^n, L = reflect(V, H); pdf = p_H / (4 V.H).
 #pragma once
 
 #include "shadelab/brdf/layered.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
@@ -19,16 +21,18 @@ class BlinnPhong final : public LayeredBrdf {
   enum class Normalization { none, exact, lower, upper };
   BlinnPhong(const Rgb& kd, const Rgb& ks, double n, Normalization normalization, bool modified);
 
+  Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::blinn_phong_eval(m_k, wi, wo); }
   bool is_reciprocal() const override { return m_modified || m_ks.is_black(); }
+  std::optional<KernelBinding> kernel_binding() const override;
   static double normalization_factor(double n, Normalization normalization, bool modified);
 
  protected:
-  Rgb specular_eval(const Vec3& wi, const Vec3& wo) const override;
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 
  private:
-  Rgb m_ks_scaled;
+  kernel::BlinnPhongParams m_kp;
+  kernel::BlinnPhongState m_k;
   Rgb m_ks;
   double m_n;
   bool m_modified;

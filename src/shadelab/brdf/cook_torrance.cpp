@@ -10,45 +10,57 @@
 
 namespace shadelab {
 
+namespace {
+
+// The enums' order is the kernel's COOK_TORRANCE_* numbering.
+static_assert(static_cast<int>(CookTorrance::Distribution::blinn_phong) == kernel::COOK_TORRANCE_D_BLINN_PHONG);
+static_assert(static_cast<int>(CookTorrance::Geometry::smith) == kernel::COOK_TORRANCE_G_SMITH &&
+              static_cast<int>(CookTorrance::Geometry::kelemen) == kernel::COOK_TORRANCE_G_KELEMEN);
+static_assert(static_cast<int>(CookTorrance::FresnelKind::none) == kernel::COOK_TORRANCE_F_NONE &&
+              static_cast<int>(CookTorrance::FresnelKind::schlick) == kernel::COOK_TORRANCE_F_SCHLICK &&
+              static_cast<int>(CookTorrance::FresnelKind::conductor) == kernel::COOK_TORRANCE_F_CONDUCTOR);
+static_assert(static_cast<int>(CookTorrance::Form::cook_torrance_1981) == kernel::COOK_TORRANCE_FORM_1981);
+
+kernel::CookTorranceParams kernel_params(const CookTorrance::Params& p) {
+  return {p.kd,
+          p.ks,
+          p.m,
+          p.n,
+          static_cast<int>(p.d),
+          static_cast<int>(p.g),
+          static_cast<int>(p.f),
+          p.ior,
+          p.k,
+          p.f0,
+          static_cast<int>(p.form)};
+}
+
+}  // namespace
+
 CookTorrance::CookTorrance(const Params& p)
-    : LayeredBrdf(p.kd * inv_pi, lobe_probability(p.kd.average(), p.ks.average())), m_p(p) {}
+    : LayeredBrdf(p.kd * inv_pi, lobe_probability(p.kd.average(), p.ks.average())),
+      m_p(p),
+      m_k(kernel::cook_torrance_prepare(kernel_params(p))) {}
 
-Rgb CookTorrance::fresnel(double cos_i) const {
-  switch (m_p.f) {
-    case FresnelKind::dielectric:
-      return {F_dielectric(cos_i, m_p.ior.r), F_dielectric(cos_i, m_p.ior.g), F_dielectric(cos_i, m_p.ior.b)};
-    case FresnelKind::conductor: return F_conductor(cos_i, m_p.ior, m_p.k);
-    case FresnelKind::schlick: return F_schlick(cos_i, m_p.f0);
-    case FresnelKind::none: break;
-  }
-  return Rgb::gray(1.0);
+std::optional<KernelBinding> CookTorrance::kernel_binding() const {
+  const kernel::CookTorranceParams& p = m_k.p;  // the parameters m_k was prepared from
+  return KernelBinding{"cook_torrance", {}}
+      .add("kd", p.kd)
+      .add("ks", p.ks)
+      .add("m", p.m)
+      .add("n", p.n)
+      .add("d", p.d)
+      .add("g", p.g)
+      .add("f", p.f)
+      .add("ior", p.ior)
+      .add("k", p.k)
+      .add("f0", p.f0)
+      .add("form", p.form);
 }
 
-double CookTorrance::distribution(double cos_h) const {
-  return m_p.d == Distribution::beckmann ? D_beckmann(cos_h, m_p.m) : D_blinn_phong(cos_h, m_p.n);
-}
+Rgb CookTorrance::fresnel(double cos_i) const { return kernel::cook_torrance_fresnel(m_k.p, cos_i); }
 
-Rgb CookTorrance::specular_eval(const Vec3& wi, const Vec3& wo) const {
-  const Vec3 h = half_vector(wi, wo);
-  const double nl = wi.z;
-  const double nv = wo.z;
-  const double nh = h.z;
-  // L.H == V.H for a reflection pair in exact arithmetic; their mean keeps f(wi, wo) == f(wo, wi) exactly.
-  const double lh = 0.5 * (dot(wi, h) + dot(wo, h));
-  if (nh <= 0.0 || lh <= 0.0) return {};
-  const double d = distribution(nh);
-  if (d == 0.0) return {};
-  // Visibility V = G / (4 N.L N.V), the microfacet form's denominator folded in.
-  double v = 0.0;
-  switch (m_p.g) {
-    case Geometry::cook_torrance: v = G_cook_torrance(nh, nv, nl, lh) / (4.0 * nl * nv); break;
-    case Geometry::kelemen: v = V_kelemen(lh); break;
-    case Geometry::smith: v = G_smith_beckmann(nl, nv, m_p.m) / (4.0 * nl * nv); break;
-  }
-  // The 1981 form: F (pi D) G / (pi N.L N.V) = 4 F D G / (4 N.L N.V).
-  const double form_scale = m_p.form == Form::cook_torrance_1981 ? 4.0 : 1.0;
-  return m_p.ks * fresnel(lh) * (d * v * form_scale);
-}
+double CookTorrance::distribution(double cos_h) const { return kernel::cook_torrance_distribution(m_k.p, cos_h); }
 
 double CookTorrance::specular_pdf(const Vec3& wi, const Vec3& wo) const {
   const Vec3 h = half_vector(wi, wo);

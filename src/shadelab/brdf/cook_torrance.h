@@ -10,10 +10,12 @@
 // converted by n = 2/m^2 - 2 when the other is given. g = cook-torrance (the min(1, ...) term) | kelemen
 // (G/(N.L N.V) ~ 1/(L.H)^2) | smith (height-correlated Smith for Beckmann). f = dielectric (ior) |
 // conductor (ior, k) | schlick (f0) | none (F = 1). F is evaluated at L.H.
+// eval is the kernel kernels/cook_torrance.sl (the text shaders also use).
 // Sampling: H with density D(h) cos(theta_h), L = reflect(V, H), pdf = D cos(theta_h) / (4 V.H).
 #pragma once
 
 #include "shadelab/brdf/layered.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
@@ -40,17 +42,19 @@ class CookTorrance final : public LayeredBrdf {
   };
 
   explicit CookTorrance(const Params& p);
+  Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::cook_torrance_eval(m_k, wi, wo); }
+  std::optional<KernelBinding> kernel_binding() const override;
 
   Rgb fresnel(double cos_i) const;
   double distribution(double cos_h) const;
 
  protected:
-  Rgb specular_eval(const Vec3& wi, const Vec3& wo) const override;
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 
  private:
   Params m_p;
+  kernel::CookTorranceState m_k;
 };
 
 }  // namespace shadelab

@@ -1,43 +1,26 @@
 // shadelab Fresnel reflectance: exact unpolarized reflectance of a smooth interface, and Schlick's form.
+// The formulas live once, in the shading dialect (src/shadelab/kernels/fresnel.sl, with their sources), so
+// that shaders use the same text; this header gives them their C++ names.
 //
-// Exact: F = (|r_s|^2 + |r_p|^2) / 2 with r_s = (n1 cos_i - n2 cos_t)/(n1 cos_i + n2 cos_t) and
-// r_p = (n2 cos_i - n1 cos_t)/(n2 cos_i + n1 cos_t) (Born & Wolf, Principles of Optics, 1.5.2; the
-// lecture's slide "Fresnel Equations"); for a conductor n2 is complex, n + ik, and cos_t is complex.
-// Schlick: F = F0 + (1 - F0)(1 - cos)^5 (Schlick, "An Inexpensive BRDF Model for Physically-based
-// Rendering", Eurographics 1994, eq. 24), F0 = ((n - 1)/(n + 1))^2 at normal incidence.
+// - F_dielectric(cos_i, eta): relative index eta = n_t / n_i; a negative cos_i means the light arrives from
+//   the other side (the interface is seen with 1/eta); total internal reflection gives 1.
+// - F_conductor(cos_i, n, k): complex relative index n + ik, k >= 0, seen from outside.
+// - F_schlick(cos_i, f0) = f0 + (1 - f0)(1 - cos)^5; f0_from_ior(n) = ((n - 1)/(n + 1))^2 and
+//   f0_from_ior(n, k) = ((n - 1)^2 + k^2)/((n + 1)^2 + k^2).
 #pragma once
 
 #include "shadelab/color/rgb.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
-// Dielectric with relative index eta = n_transmitted / n_incident (real, > 0). cos_i is the cosine of the
-// angle between the incident direction and the normal on the incident side; a negative cos_i means the light
-// arrives from the other side, and the interface is seen with 1/eta. Total internal reflection gives 1.
-double F_dielectric(double cos_i, double eta);
+using kernel::F_conductor;
+using kernel::F_dielectric;
+using kernel::F_schlick;
+using kernel::f0_from_ior;
 
-// Conductor (or absorbing dielectric) with complex relative index n + ik, k >= 0, seen from outside.
-double F_conductor(double cos_i, double n, double k);
-Rgb F_conductor(double cos_i, const Rgb& n, const Rgb& k);
-
-// Schlick's approximation from the reflectance at normal incidence.
-constexpr double F_schlick(double cos_i, double f0) {
-  const double m = 1.0 - cos_i;
-  const double m2 = m * m;
-  return f0 + (1.0 - f0) * (m2 * m2 * m);
-}
-constexpr Rgb F_schlick(double cos_i, const Rgb& f0) {
-  return {F_schlick(cos_i, f0.r), F_schlick(cos_i, f0.g), F_schlick(cos_i, f0.b)};
-}
-
-// Reflectance at normal incidence of a dielectric of relative index n: ((n - 1)/(n + 1))^2.
-constexpr double f0_from_ior(double n) {
-  const double r = (n - 1.0) / (n + 1.0);
-  return r * r;
-}
-// Reflectance at normal incidence of a conductor: ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2).
-constexpr double f0_from_ior(double n, double k) {
-  return ((n - 1.0) * (n - 1.0) + k * k) / ((n + 1.0) * (n + 1.0) + k * k);
-}
+inline Rgb F_conductor(double cos_i, const Rgb& n, const Rgb& k) { return kernel::F_conductor_rgb(cos_i, n, k); }
+inline Rgb F_schlick(double cos_i, const Rgb& f0) { return kernel::F_schlick_rgb(cos_i, f0); }
+inline double f0_from_ior(double n, double k) { return kernel::f0_from_ior_k(n, k); }
 
 }  // namespace shadelab

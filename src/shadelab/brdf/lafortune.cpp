@@ -1,5 +1,6 @@
 #include "shadelab/brdf/lafortune.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "shadelab/brdf/registry.h"
@@ -12,6 +13,21 @@ namespace shadelab {
 namespace {
 // Albedo estimate of lobe j used for lobe selection: |s|^n * 2 pi / (n + 1) (its integral over the sphere).
 double lobe_weight(double s_len, double n) { return std::pow(s_len, n) * two_pi / (n + 1.0); }
+
+kernel::LafortuneParams kernel_params(const Rgb& kd, const Rgb& ks, const std::vector<Lafortune::Lobe>& lobes) {
+  kernel::LafortuneParams p{};
+  p.kd = kd;
+  p.ks = ks;
+  p.count = static_cast<int>(std::min<std::size_t>(lobes.size(), kernel::LAFORTUNE_MAX_LOBES));
+  for (int j = 0; j < p.count; ++j) {
+    const auto& l = lobes[static_cast<std::size_t>(j)];
+    p.cx[j] = l.cx;
+    p.cy[j] = l.cy;
+    p.cz[j] = l.cz;
+    p.n[j] = l.n;
+  }
+  return p;
+}
 }  // namespace
 
 Lafortune::Lafortune(const Rgb& kd, const Rgb& ks, std::vector<Lobe> lobes)
@@ -21,8 +37,20 @@ Lafortune::Lafortune(const Rgb& kd, const Rgb& ks, std::vector<Lobe> lobes)
         for (const auto& l : lobes) spec += lobe_weight(std::abs(l.cz), l.n);
         return lobe_probability(kd.average(), ks.average() * spec);
       }()),
-      m_ks(ks),
-      m_lobes(std::move(lobes)) {}
+      m_lobes(std::move(lobes)),
+      m_k(kernel::lafortune_prepare(kernel_params(kd, ks, m_lobes))) {}
+
+std::optional<KernelBinding> Lafortune::kernel_binding() const {
+  const kernel::LafortuneParams& p = m_k.p;  // the parameters m_k was prepared from
+  return KernelBinding{"lafortune", {}}
+      .add("kd", p.kd)
+      .add("ks", p.ks)
+      .add("count", p.count)
+      .add("cx", p.cx)
+      .add("cy", p.cy)
+      .add("cz", p.cz)
+      .add("n", p.n);
+}
 
 Lafortune::Axes Lafortune::axes(const Vec3& wo) const {
   Axes a;
@@ -38,15 +66,6 @@ Lafortune::Axes Lafortune::axes(const Vec3& wo) const {
   }
   for (auto& p : a.probability) p = total > 0.0 ? p / total : 1.0 / static_cast<double>(m_lobes.size());
   return a;
-}
-
-Rgb Lafortune::specular_eval(const Vec3& wi, const Vec3& wo) const {
-  double sum = 0.0;
-  for (const auto& l : m_lobes) {
-    const double c = l.cx * wi.x * wo.x + l.cy * wi.y * wo.y + l.cz * wi.z * wo.z;  // Lafortune 1997 eq. 4
-    if (c > 0.0) sum += std::pow(c, l.n);
-  }
-  return m_ks * sum;
 }
 
 double Lafortune::specular_pdf(const Vec3& wi, const Vec3& wo) const {
@@ -79,12 +98,16 @@ ModelInfo lafortune_model() {
   info.params = {kd_param("0.3"),
                  ks_param("1"),
                  {"lobes", ParamKind::lobes, "-1,-1,1,20", -1e3, 1e3, {},
-                  "lobes Cx,Cy,Cz,n separated by ';' (n in [0, 1e6])", 4,
+                  "lobes Cx,Cy,Cz,n separated by ';' (n in [0, 1e6]; 1 to 8 lobes)", 4,
                   {{-1e3, 1e3}, {-1e3, 1e3}, {-1e3, 1e3}, {0.0, 1e6}}}};
   info.create = [](const ParamValues& p) -> Result<BrdfPtr> {
     std::vector<Lafortune::Lobe> lobes;
     for (const auto& g : p.lobes("lobes")) lobes.push_back({g[0], g[1], g[2], g[3]});
     if (lobes.empty()) return make_error("brdf lafortune: parameter 'lobes' needs at least one lobe");
+    if (lobes.size() > static_cast<std::size_t>(kernel::LAFORTUNE_MAX_LOBES)) {
+      return make_error("brdf lafortune: parameter 'lobes' has " + std::to_string(lobes.size()) + " lobes; at most " +
+                        std::to_string(kernel::LAFORTUNE_MAX_LOBES) + " are supported");
+    }
     return BrdfPtr(new Lafortune(p.color("kd"), p.color("ks"), std::move(lobes)));
   };
   return info;

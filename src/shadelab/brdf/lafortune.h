@@ -8,6 +8,7 @@
 // (unnormalized); |C| > 1 brightens a lobe, Cx = Cy > 0 makes it retro-reflective, |Cx| != |Cy| anisotropic.
 // Reciprocal (the form is symmetric in L and V). Not energy conserving in general: the lobe magnitudes are
 // free parameters, as in the paper's fits.
+// eval is the kernel kernels/lafortune.sl (the text shaders also use); at most kernel::LAFORTUNE_MAX_LOBES lobes.
 // Sampling: lobe j is |s|^n (s^.L)^n with s = (Cx V.x, Cy V.y, Cz V.z); it is sampled as a power-cosine lobe
 // of exponent n about s^, chosen with probability proportional to its albedo estimate.
 #pragma once
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "shadelab/brdf/layered.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
@@ -26,10 +28,12 @@ class Lafortune final : public LayeredBrdf {
     double cz = 1.0;
     double n = 20.0;
   };
+  // lobes: 1 .. kernel::LAFORTUNE_MAX_LOBES (the registry refuses more).
   Lafortune(const Rgb& kd, const Rgb& ks, std::vector<Lobe> lobes);
+  Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::lafortune_eval(m_k, wi, wo); }
+  std::optional<KernelBinding> kernel_binding() const override;
 
  protected:
-  Rgb specular_eval(const Vec3& wi, const Vec3& wo) const override;
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 
@@ -41,8 +45,8 @@ class Lafortune final : public LayeredBrdf {
   };
   Axes axes(const Vec3& wo) const;
 
-  Rgb m_ks;
   std::vector<Lobe> m_lobes;
+  kernel::LafortuneState m_k;
 };
 
 }  // namespace shadelab

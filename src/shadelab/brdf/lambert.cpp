@@ -6,9 +6,12 @@
 
 namespace shadelab {
 
+std::optional<KernelBinding> Lambert::kernel_binding() const {
+  return KernelBinding{"lambert", {}}.add("kd", m_kp.kd);
+}
+
 Rgb Lambert::eval(const Vec3& wi, const Vec3& wo) const {
-  if (wi.z <= 0.0 || wo.z <= 0.0) return {};
-  return m_kd * inv_pi;  // kd / pi
+  return kernel::lambert_eval(m_k, wi, wo);  // kd / pi above the horizon
 }
 
 double Lambert::pdf(const Vec3& wi, const Vec3& wo) const {

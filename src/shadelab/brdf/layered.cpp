@@ -9,13 +9,6 @@ double LayeredBrdf::lobe_probability(double diffuse_albedo, double specular_albe
   return total > 0.0 ? diffuse_albedo / total : 1.0;
 }
 
-Rgb LayeredBrdf::eval(const Vec3& wi, const Vec3& wo) const {
-  if (wi.z <= 0.0 || wo.z <= 0.0) return {};
-  Rgb f = m_diffuse;
-  if (m_p_diffuse < 1.0) f += specular_eval(wi, wo);
-  return f;
-}
-
 double LayeredBrdf::pdf(const Vec3& wi, const Vec3& wo) const {
   if (wo.z <= 0.0) return 0.0;
   double p = m_p_diffuse > 0.0 ? m_p_diffuse * cosine_hemisphere_pdf(wi) : 0.0;

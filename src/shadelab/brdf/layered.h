@@ -1,5 +1,7 @@
 // shadelab diffuse + specular layering: the common shape f = diffuse + specular(wi, wo) of most models,
 // with one-sample MIS between a cosine-weighted diffuse lobe and the model's own specular sampler.
+// eval (the whole f, diffuse included) is each model's kernel (src/shadelab/kernels/*.sl); this class
+// supplies the sampling density, the sampler and the diffuse albedo.
 //
 // The sampling density is the mixture p(wi) = p_d cos(theta_i)/pi + (1 - p_d) p_s(wi), so the weight
 // f cos / p is an unbiased one-sample estimator whichever lobe was picked (Veach 1997, section 9.2.4).
@@ -12,7 +14,6 @@ namespace shadelab {
 
 class LayeredBrdf : public Brdf {
  public:
-  Rgb eval(const Vec3& wi, const Vec3& wo) const final;
   double pdf(const Vec3& wi, const Vec3& wo) const final;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const final;
   Rgb diffuse_albedo() const final { return m_diffuse * pi; }  // pi x the constant diffuse f
@@ -21,8 +22,6 @@ class LayeredBrdf : public Brdf {
   // diffuse: the constant diffuse BRDF value (kd/pi for normalized models). diffuse_probability: p_d.
   LayeredBrdf(Rgb diffuse, double diffuse_probability) : m_diffuse(diffuse), m_p_diffuse(diffuse_probability) {}
 
-  // The specular part of f for wi, wo both above the horizon.
-  virtual Rgb specular_eval(const Vec3& wi, const Vec3& wo) const = 0;
   // Density of specular_sample over the sphere (wo above the horizon).
   virtual double specular_pdf(const Vec3& wi, const Vec3& wo) const = 0;
   // u picks the direction; u_lobe in [0, 1) is left for models with several specular lobes.
@@ -30,11 +29,6 @@ class LayeredBrdf : public Brdf {
 
   // p_d from the two lobes' albedo estimates: a_d / (a_d + a_s), 1 when both are zero.
   static double lobe_probability(double diffuse_albedo, double specular_albedo);
-
-  // Divisors that vanish at the horizon (N.L in the original Phong forms, sqrt(N.L N.V) in Ward, L.H in the
-  // minimalist model) are clamped here, so eval stays finite for any direction above the horizon; the clamp
-  // changes f only where the divisor is below 1e-12, a set of measure ~1e-12 of the hemisphere.
-  static double safe_divisor(double x) { return x > 1e-12 ? x : 1e-12; }
 
   Rgb m_diffuse;
   double m_p_diffuse;

@@ -10,14 +10,13 @@
 namespace shadelab {
 
 MinimalistCookTorrance::MinimalistCookTorrance(const Rgb& kd, const Rgb& ks, double n)
-    : LayeredBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())), m_ks(ks), m_n(n) {}
+    : LayeredBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())),
+      m_kp{kd, ks, n},
+      m_k(kernel::minimalist_cook_torrance_prepare(m_kp)),
+      m_n(n) {}
 
-Rgb MinimalistCookTorrance::specular_eval(const Vec3& wi, const Vec3& wo) const {
-  const Vec3 h = half_vector(wi, wo);
-  // L.H = V.H in exact arithmetic; their mean keeps f(wi, wo) == f(wo, wi) bit for bit.
-  const double lh = safe_divisor(0.5 * (dot(wi, h) + dot(wo, h)));
-  // D F V = (n+1)/(2pi) (N.H)^n * 1/(4 (L.H)^3) = (n+1)(N.H)^n / (8 pi (L.H)^3)   (ShaderX7, zoo article)
-  return m_ks * (D_blinn_phong_ndf(h.z, m_n) / (4.0 * lh * lh * lh));
+std::optional<KernelBinding> MinimalistCookTorrance::kernel_binding() const {
+  return KernelBinding{"minimalist_cook_torrance", {}}.add("kd", m_kp.kd).add("ks", m_kp.ks).add("n", m_kp.n);
 }
 
 double MinimalistCookTorrance::specular_pdf(const Vec3& wi, const Vec3& wo) const {

@@ -4,24 +4,30 @@
 // row, and the combined FV = 1/(4 (L.H)^3): no Fresnel colour shift, linear in ks. Reciprocal, since
 // L.H = V.H. Not energy conserving at grazing angles (the 1/(L.H)^3 grows without bound); `brdf check`
 // reports its measured maximum albedo.
+// eval is the kernel kernels/minimalist_cook_torrance.sl (the text shaders also use).
 // Sampling: H from the power-cosine lobe (n+1)/(2pi) (N.H)^n, pdf = p_H / (4 V.H).
 #pragma once
 
 #include "shadelab/brdf/layered.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
 class MinimalistCookTorrance final : public LayeredBrdf {
  public:
   MinimalistCookTorrance(const Rgb& kd, const Rgb& ks, double n);
+  Rgb eval(const Vec3& wi, const Vec3& wo) const override {
+    return kernel::minimalist_cook_torrance_eval(m_k, wi, wo);
+  }
+  std::optional<KernelBinding> kernel_binding() const override;
 
  protected:
-  Rgb specular_eval(const Vec3& wi, const Vec3& wo) const override;
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 
  private:
-  Rgb m_ks;
+  kernel::MinimalistCookTorranceParams m_kp;
+  kernel::MinimalistCookTorranceState m_k;
   double m_n;
 };
 

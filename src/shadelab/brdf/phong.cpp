@@ -20,24 +20,31 @@ double lobe_albedo(double n) { return two_pi / (n + 1.0); }  // integral of cos^
 }  // namespace
 
 double Phong::normalization_factor(double n, Normalization normalization, bool modified) {
-  if (normalization == Normalization::none) return 1.0;
-  return modified ? (n + 2.0) * inv_two_pi : (n + 1.0) * inv_two_pi;  // zoo, Phong rows
+  return kernel::phong_normalization(n,
+                                     normalization == Normalization::none ? kernel::PHONG_NORMALIZATION_NONE
+                                                                          : kernel::PHONG_NORMALIZATION_EXACT,
+                                     modified ? 1 : 0);
 }
 
 Phong::Phong(const Rgb& kd, const Rgb& ks, double n, Normalization normalization, bool modified)
     : LayeredBrdf(normalization == Normalization::exact ? kd * inv_pi : kd,
                   lobe_probability(normalization == Normalization::exact ? kd.average() : kd.average() * pi,
                                    ks.average() * normalization_factor(n, normalization, modified) * lobe_albedo(n))),
-      m_ks_scaled(ks * normalization_factor(n, normalization, modified)),
+      m_kp{kd, ks, n,
+           normalization == Normalization::none ? kernel::PHONG_NORMALIZATION_NONE : kernel::PHONG_NORMALIZATION_EXACT,
+           modified ? 1 : 0},
+      m_k(kernel::phong_prepare(m_kp)),
       m_ks(ks),
       m_n(n),
       m_modified(modified) {}
 
-Rgb Phong::specular_eval(const Vec3& wi, const Vec3& wo) const {
-  const double c = dot(reflect(wo, normal), wi);  // R.L
-  if (c <= 0.0) return {};
-  const double lobe = std::pow(c, m_n);
-  return m_modified ? m_ks_scaled * lobe : m_ks_scaled * (lobe / safe_divisor(wi.z));
+std::optional<KernelBinding> Phong::kernel_binding() const {
+  return KernelBinding{"phong", {}}
+      .add("kd", m_kp.kd)
+      .add("ks", m_kp.ks)
+      .add("n", m_kp.n)
+      .add("normalization", m_kp.normalization)
+      .add("modified", m_kp.modified);
 }
 
 double Phong::specular_pdf(const Vec3& wi, const Vec3& wo) const {

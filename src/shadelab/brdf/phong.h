@@ -7,10 +7,12 @@
 // rows, Schüler 2011), and kd' = kd/pi; then with the viewer on the normal the specular albedo is exactly ks.
 // normalization = none: N = 1 and kd' = kd, the lecture's unnormalized form (it does not conserve energy).
 // The original form divides by N.L and so is not reciprocal; the modified form is.
+// eval is the kernel kernels/phong.sl (the text shaders also use).
 // Sampling: a power-cosine lobe of exponent n about R (pdf (n + 1)/(2 pi) (R.L)^n over the sphere).
 #pragma once
 
 #include "shadelab/brdf/layered.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
@@ -19,17 +21,19 @@ class Phong final : public LayeredBrdf {
   enum class Normalization { none, exact };
   Phong(const Rgb& kd, const Rgb& ks, double n, Normalization normalization, bool modified);
 
+  Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::phong_eval(m_k, wi, wo); }
   bool is_reciprocal() const override { return m_modified || m_ks.is_black(); }
+  std::optional<KernelBinding> kernel_binding() const override;
   // The constant N in front of the lobe.
   static double normalization_factor(double n, Normalization normalization, bool modified);
 
  protected:
-  Rgb specular_eval(const Vec3& wi, const Vec3& wo) const override;
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 
  private:
-  Rgb m_ks_scaled;  // ks * N
+  kernel::PhongParams m_kp;
+  kernel::PhongState m_k;
   Rgb m_ks;
   double m_n;
   bool m_modified;

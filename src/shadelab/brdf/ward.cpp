@@ -9,22 +9,21 @@
 namespace shadelab {
 
 Ward::Ward(const Rgb& kd, const Rgb& ks, double alpha_x, double alpha_y)
-    : LayeredBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())), m_ks(ks), m_ax(alpha_x), m_ay(alpha_y) {}
+    : LayeredBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())),
+      m_kp{kd, ks, alpha_x, alpha_y},
+      m_k(kernel::ward_prepare(m_kp)),
+      m_ax(alpha_x),
+      m_ay(alpha_y) {}
 
-double Ward::slope_term(const Vec3& h) const {
-  // tan^2(theta) cos^2(phi) = (h.x/h.z)^2 and tan^2(theta) sin^2(phi) = (h.y/h.z)^2.
-  const double sx = h.x / (m_ax * h.z);
-  const double sy = h.y / (m_ay * h.z);
-  return sx * sx + sy * sy;
+std::optional<KernelBinding> Ward::kernel_binding() const {
+  return KernelBinding{"ward", {}}
+      .add("kd", m_kp.kd)
+      .add("ks", m_kp.ks)
+      .add("alpha_x", m_kp.alpha_x)
+      .add("alpha_y", m_kp.alpha_y);
 }
 
-Rgb Ward::specular_eval(const Vec3& wi, const Vec3& wo) const {
-  const Vec3 h = half_vector(wi, wo);
-  if (h.z <= 0.0) return {};
-  // Ward 1992 eq. 5a: exp(-tan^2 (...)) / (4 pi ax ay sqrt(N.L N.V))
-  const double value = std::exp(-slope_term(h)) / (4.0 * pi * m_ax * m_ay * std::sqrt(safe_divisor(wi.z * wo.z)));
-  return m_ks * value;
-}
+double Ward::slope_term(const Vec3& h) const { return kernel::ward_slope_term(h, m_ax, m_ay); }
 
 double Ward::specular_pdf(const Vec3& wi, const Vec3& wo) const {
   const Vec3 h = half_vector(wi, wo);

@@ -10,29 +10,33 @@
 // Ward's cheaper approximation of the tan^2 form, equal to first order near H = N; we use the exact
 // tan^2 form so that ward-anisotropic with ax = ay equals ward (docs/models/ward.md).
 // Reciprocal. Tangent = +X (alpha_x), bitangent = +Y (alpha_y).
+// eval is the kernel kernels/ward.sl (the text shaders also use).
 // Sampling (Walter, "Notes on the Ward BRDF", 2005): phi_h = atan(ay/ax tan(2 pi u1)),
 // tan^2(theta_h) = -ln(u0) / (cos^2/ax^2 + sin^2/ay^2); p_H = exp(...) / (pi ax ay cos^3(theta_h)),
 // pdf = p_H / (4 V.H).
 #pragma once
 
 #include "shadelab/brdf/layered.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
 class Ward final : public LayeredBrdf {
  public:
   Ward(const Rgb& kd, const Rgb& ks, double alpha_x, double alpha_y);
+  Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::ward_eval(m_k, wi, wo); }
+  std::optional<KernelBinding> kernel_binding() const override;
 
   // The exponent's argument tan^2(theta_h)(cos^2/ax^2 + sin^2/ay^2) for a unit half vector h.
   double slope_term(const Vec3& h) const;
 
  protected:
-  Rgb specular_eval(const Vec3& wi, const Vec3& wo) const override;
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 
  private:
-  Rgb m_ks;
+  kernel::WardParams m_kp;
+  kernel::WardState m_k;
   double m_ax;
   double m_ay;
 };

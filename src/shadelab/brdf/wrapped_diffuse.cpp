@@ -6,14 +6,11 @@
 
 namespace shadelab {
 
-Rgb WrappedDiffuse::eval(const Vec3& wi, const Vec3& wo) const {
-  if (wi.z <= 0.0 || wo.z <= 0.0) return {};
-  // The 1/N.L diverges at the horizon for w > 0; clamped at 1e-12 so eval stays finite (the product
-  // f cos(theta_i), which is what any estimator uses, is unaffected above that).
-  const double cos_i = wi.z > 1e-12 ? wi.z : 1e-12;
-  const double one_w = 1.0 + m_w;
-  return m_kd * ((wi.z + m_w) / (pi * one_w * one_w * cos_i));  // McAuley 2011
+std::optional<KernelBinding> WrappedDiffuse::kernel_binding() const {
+  return KernelBinding{"wrapped_diffuse", {}}.add("kd", m_kp.kd).add("w", m_kp.w);
 }
+
+Rgb WrappedDiffuse::eval(const Vec3& wi, const Vec3& wo) const { return kernel::wrapped_diffuse_eval(m_k, wi, wo); }
 
 double WrappedDiffuse::pdf(const Vec3& wi, const Vec3& wo) const {
   if (wo.z <= 0.0 || wi.z < 0.0) return 0.0;

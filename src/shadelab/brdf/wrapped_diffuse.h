@@ -7,27 +7,32 @@
 // response integrates to kd over the directions with N.L > -w (its normalization 1/(pi (1 + w))); above the
 // geometric horizon it integrates to kd (1 + 2w)/(1 + w)^2 <= kd, which is what a renderer that gathers light
 // only above the surface sees. f_r depends on L alone, so it is NOT reciprocal for w > 0, by design.
+// eval is the kernel kernels/wrapped_diffuse.sl (the text shaders also use).
 // Sampling: density (cos + w) / (pi (1 + 2w)), a mix of cosine (weight 1/(1+2w)) and uniform (2w/(1+2w))
 // hemisphere sampling, so the sample weight is the constant kd (1 + 2w)/(1 + w)^2.
 #pragma once
 
 #include "shadelab/brdf/brdf.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
 class WrappedDiffuse final : public Brdf {
  public:
-  WrappedDiffuse(const Rgb& kd, double w) : m_kd(kd), m_w(w) {}
+  WrappedDiffuse(const Rgb& kd, double w) : m_kd(kd), m_w(w), m_kp{kd, w}, m_k(kernel::wrapped_diffuse_prepare(m_kp)) {}
   Rgb eval(const Vec3& wi, const Vec3& wo) const override;
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
   bool is_reciprocal() const override { return m_w == 0.0 || m_kd.is_black(); }
   Rgb diffuse_albedo() const override { return m_kd; }  // the wrap itself is applied by SH band factors
   double wrap() const { return m_w; }
+  std::optional<KernelBinding> kernel_binding() const override;
 
  private:
   Rgb m_kd;
   double m_w;
+  kernel::WrappedDiffuseParams m_kp;
+  kernel::WrappedDiffuseState m_k;
 };
 
 }  // namespace shadelab

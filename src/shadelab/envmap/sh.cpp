@@ -11,6 +11,7 @@
 
 #include "shadelab/envmap/latlong.h"
 #include "shadelab/envmap/simd.h"
+#include "shadelab/kernels/kernels.h"
 
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -18,11 +19,12 @@
 
 namespace shadelab {
 
+// The basis and the evaluation are the kernel kernels/sh9.sl, the text exported shaders use.
 ShBasis sh9_basis(const Vec3& n) {
-  const double x = n.x, y = n.y, z = n.z;
-  return {sh_c0,
-          -sh_c1 * y, sh_c1 * z, -sh_c1 * x,
-          sh_c2 * x * y, -sh_c2 * y * z, sh_c3 * (3.0 * z * z - 1.0), -sh_c2 * x * z, sh_c4 * (x * x - y * y)};
+  const kernel::Sh9Basis b = kernel::sh9_basis(n);
+  ShBasis out;
+  for (std::size_t i = 0; i < 9; ++i) out[i] = b.y[i];
+  return out;
 }
 
 BandFactors sh_window_factors(ShWindow window) {
@@ -91,17 +93,42 @@ using RowSums5 = std::array<double, 15>;
 // The nine SH9 coefficients from the ten second-order moments sum L w d_i d_j, sum L w d_i, sum L w
 // (per channel): index 0 = 1; 1, 2, 3 = x, y, z; 4 xy, 5 yz, 6 xz, 7 xx, 8 yy, 9 zz.
 using Moments = std::array<Rgb, 10>;
+
+// Each Y_i of kernels/sh9.sl is a quadratic polynomial in (x, y, z); P[i][k] is its coefficient of moment k,
+// read off the kernel itself (the one source of the basis) by finite differences that are exact for a
+// quadratic: constant Y(0); x: (Y(e) - Y(-e))/2; xx: (Y(e) + Y(-e))/2 - Y(0); xy: Y(e1 + e2) - Y(e1) - Y(e2) + Y(0).
+using BasisPolynomial = std::array<std::array<double, 10>, 9>;
+const BasisPolynomial& basis_polynomial() {
+  static const BasisPolynomial p = [] {
+    auto y = [](double a, double b, double c) { return kernel::sh9_basis(kernel::vec3(a, b, c)); };
+    const Vec3 e[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const int cross[3][2] = {{0, 1}, {1, 2}, {0, 2}};  // moments 4 xy, 5 yz, 6 xz
+    BasisPolynomial out{};
+    const kernel::Sh9Basis y0 = y(0, 0, 0);
+    for (std::size_t i = 0; i < 9; ++i) out[i][0] = y0.y[i];
+    for (std::size_t a = 0; a < 3; ++a) {
+      const kernel::Sh9Basis yp = y(e[a].x, e[a].y, e[a].z), ym = y(-e[a].x, -e[a].y, -e[a].z);
+      for (std::size_t i = 0; i < 9; ++i) {
+        out[i][1 + a] = 0.5 * (yp.y[i] - ym.y[i]);
+        out[i][7 + a] = 0.5 * (yp.y[i] + ym.y[i]) - y0.y[i];
+      }
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3 u = e[cross[k][0]], v = e[cross[k][1]], s = u + v;
+      const kernel::Sh9Basis ys = y(s.x, s.y, s.z), yu = y(u.x, u.y, u.z), yv = y(v.x, v.y, v.z);
+      for (std::size_t i = 0; i < 9; ++i) out[i][4 + k] = ys.y[i] - yu.y[i] - yv.y[i] + y0.y[i];
+    }
+    return out;
+  }();
+  return p;
+}
+
 Sh9 from_moments(const Moments& m) {
+  const BasisPolynomial& p = basis_polynomial();
   Sh9 sh;
-  sh.c[0] = m[0] * sh_c0;
-  sh.c[1] = m[2] * -sh_c1;
-  sh.c[2] = m[3] * sh_c1;
-  sh.c[3] = m[1] * -sh_c1;
-  sh.c[4] = m[4] * sh_c2;
-  sh.c[5] = m[5] * -sh_c2;
-  sh.c[6] = (m[9] * 3.0 - m[0]) * sh_c3;
-  sh.c[7] = m[6] * -sh_c2;
-  sh.c[8] = (m[7] - m[8]) * sh_c4;
+  for (std::size_t i = 0; i < 9; ++i)
+    for (std::size_t k = 0; k < 10; ++k)
+      if (p[i][k] != 0.0) sh.c[i] += m[k] * p[i][k];
   return sh;
 }
 
@@ -281,10 +308,9 @@ Sh9 project_sh9(const std::function<Rgb(const Vec3&)>& f, int size) {
 }
 
 Rgb sh9_evaluate(const Sh9& sh, const Vec3& n, const BandFactors& factors) {
-  const ShBasis b = sh9_basis(n);
-  Rgb sum;
-  for (std::size_t i = 0; i < 9; ++i) sum += sh.c[i] * (b[i] * factors[static_cast<std::size_t>(sh_band(static_cast<int>(i)))]);
-  return sum;
+  kernel::Sh9Coefficients k;
+  for (std::size_t i = 0; i < 9; ++i) k.c[i] = sh.c[i];
+  return kernel::sh9_evaluate(k, n, factors[0], factors[1], factors[2]);
 }
 
 Sh9 sh9_scale_bands(const Sh9& sh, const BandFactors& factors) {

@@ -1,0 +1,22 @@
+// common: constants and helpers every kernel may use (shading dialect, sl.h).
+
+const real SL_PI = 3.14159265358979323846;
+const real SL_INV_PI = 0.31830988618379067154;      // 1 / pi: the Lambertian BRDF of albedo 1
+const real SL_INV_TWO_PI = 0.15915494309189533577;  // 1 / (2 pi)
+
+// Divisors that vanish at the horizon (N.L in the original Phong forms, sqrt(N.L N.V) in Ward, L.H in the
+// minimalist model) are clamped to 1e-12, so eval stays finite for every direction above the horizon; the
+// clamp changes f only where the divisor is below 1e-12, a set of measure ~1e-12 of the hemisphere.
+inline real safe_divisor(real x) {
+  return x > 1e-12 ? x : 1e-12;
+}
+
+// Half vector of a reflection pair, on the side of the normal (+Z). wi == -wo has no half vector (a set of
+// measure zero); +Z is returned there so that eval stays finite.
+inline vec3 half_vector(vec3 wi, vec3 wo) {
+  vec3 h = wi + wo;
+  real len = length(h);
+  if (len == 0.0) return vec3(0.0, 0.0, 1.0);
+  h = h / len;
+  return h.z < 0.0 ? -h : h;
+}
