@@ -51,7 +51,10 @@ def run_suite(name, suite, build, scratch):
     proc = subprocess.run(locked(argv), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     if not out.exists():
         return None, f"{binary.name} exited {proc.returncode}: {proc.stderr.strip()[-200:]}"
-    data = json.loads(out.read_text())
+    try:
+        data = json.loads(out.read_text())
+    except ValueError:
+        return None, f"{binary.name} exited {proc.returncode} without results: {proc.stderr.strip()[-200:]}"
     results = {}
     for b in data.get("benchmarks", []):
         # Google Benchmark appends /real_time, /manual_time, /min_time:X, /iterations:N, /repeats:N: drop them.
