@@ -317,8 +317,8 @@ the figures of `shadelab compare --json` (docs/compare.md). heatmap=True adds th
         R"(bake_sh(image, *, units='game', window='none', input_size=None, details=False) -> ndarray (9, 3)
 
 Nine RGB spherical-harmonic irradiance coefficients of an environment: a path, a 2:1 lat-long or a cube cross
-as (H, W, 3), or six faces as (6, S, S, 3) in the order +X, -X, +Y, -Y, +Z, -Z. A lat-long is first resampled
-to a cube of input_size faces (default: a power of two near width / 4, at most 512).
+as (H, W, 3), or six faces as (6, S, S, 3) in the order +X, -X, +Y, -Y, +Z, -Z. A lat-long is projected over its
+own texels, or with input_size first resampled to a cube of input_size faces.
 
 Convention: real SH with the Condon-Shortley phase, z polar axis, in Sloan's order Y00, Y1-1, Y10, Y11, Y2-2,
 Y2-1, Y20, Y21, Y22, world axes (+Y up). units='game': sum_i c_i Y_i(n) is E/pi, the exit radiance of a
@@ -329,7 +329,7 @@ radiance. window: none, hanning or lanczos (damps ringing). details=True returns
         py::arg("units") = "game", py::arg("layout") = "faces", py::arg("input_size") = py::none(),
         R"(bake_irradiance(image, *, size=32, units='game', layout='faces', input_size=None) -> ndarray
 
-The cosine-convolved irradiance cube map of an environment (the image argument as bake_sh), by brute force:
+The cosine-convolved irradiance cube map of an environment (the image argument as bake_sh), exact over its texels:
 units='game' stores E/pi (a constant 0.5 environment bakes to 0.5), 'radiometric' stores E. layout='faces'
 returns float32 (6, size, size, 3) in the order +X, -X, +Y, -Y, +Z, -Z (OpenGL orientation); 'hcross',
 'vcross' or 'latlong' return the (H, W, 3) image `shadelab bake irradiance --layout` writes.)");
