@@ -50,37 +50,42 @@ using namespace simd;
 
 // The projection kernel: for one row of texels (RGB interleaved) and five weight arrays g_k, the 15 sums
 // sum_x L_c(x) g_k(x), in float with 8 independent lanes (the row is at most a few thousand texels). The
-// SH9 projection of a cube row and of a lat-long ring both reduce to five such weights (see below), so a
-// pass reads each texel once, does 15 multiply-adds on it and keeps 15 accumulators in registers.
-SHADELAB_INLINE void row_sums5_impl(const float* rgb, const float* const g[5], int n, float out[15]) {
-  f8 acc[15] = {};
+// SH9 projection of a cube row and of a lat-long ring both reduce to five such weights (see below). Each
+// g3[k] holds its weights expanded to the row's interleaved layout (g(0) three times, g(1) three times, ...),
+// so the row is read as it lies, 24 floats (8 texels) a step, each float multiplied by its lane-aligned
+// weight with no de-interleaving; the channel of float j of the row is j mod 3. Two passes (k = 0..2, then
+// 3..4) keep the accumulators in registers (9 and 6 of the 16); the row (12 n bytes) stays in L1 between.
+template <int K0, int K1>
+SHADELAB_INLINE void row_pass(const float* rgb, const float* const g3[5], int n, float out[15]) {
+  constexpr int K = K1 - K0;
+  f8 acc[K][3] = {};
   int x = 0;
   for (; x + 8 <= n; x += 8) {
-    const f8 v0 = load8(rgb + 3 * x), v1 = load8(rgb + 3 * x + 8), v2 = load8(rgb + 3 * x + 16);
-    // De-interleave r0 g0 b0 r1 g1 b1 ... into R, G, B.
-    typedef std::int32_t m8 __attribute__((vector_size(32)));
-    const f8 r01 = __builtin_shuffle(v0, v1, m8{0, 3, 6, 9, 12, 15, 0, 0});
-    const f8 g01 = __builtin_shuffle(v0, v1, m8{1, 4, 7, 10, 13, 0, 0, 0});
-    const f8 b01 = __builtin_shuffle(v0, v1, m8{2, 5, 8, 11, 14, 0, 0, 0});
-    const f8 r = __builtin_shuffle(r01, v2, m8{0, 1, 2, 3, 4, 5, 10, 13});
-    const f8 gg = __builtin_shuffle(g01, v2, m8{0, 1, 2, 3, 4, 8, 11, 14});
-    const f8 b = __builtin_shuffle(b01, v2, m8{0, 1, 2, 3, 4, 9, 12, 15});
-    for (int k = 0; k < 5; ++k) {
-      const f8 w = load8(g[k] + x);
-      acc[3 * k] += w * r;
-      acc[3 * k + 1] += w * gg;
-      acc[3 * k + 2] += w * b;
+    const float* p = rgb + 3 * x;
+    const f8 v0 = load8(p), v1 = load8(p + 8), v2 = load8(p + 16);
+    for (int k = 0; k < K; ++k) {
+      const float* w = g3[K0 + k] + 3 * x;
+      acc[k][0] += load8(w) * v0;
+      acc[k][1] += load8(w + 8) * v1;
+      acc[k][2] += load8(w + 16) * v2;
     }
   }
-  for (int k = 0; k < 15; ++k) out[k] = hsum(acc[k]);
-  for (; x < n; ++x) {
-    for (int k = 0; k < 5; ++k) {
-      const float w = g[k][x];
-      out[3 * k] += w * rgb[3 * x];
-      out[3 * k + 1] += w * rgb[3 * x + 1];
-      out[3 * k + 2] += w * rgb[3 * x + 2];
-    }
+  for (int k = 0; k < K; ++k) {
+    float lanes[24];
+    store8(lanes, acc[k][0]);
+    store8(lanes + 8, acc[k][1]);
+    store8(lanes + 16, acc[k][2]);
+    for (int j = 0; j < 24; ++j) out[3 * (K0 + k) + j % 3] += lanes[j];
   }
+  for (; x < n; ++x)
+    for (int k = K0; k < K1; ++k)
+      for (int c = 0; c < 3; ++c) out[3 * k + c] += g3[k][3 * x + c] * rgb[3 * x + c];
+}
+
+SHADELAB_INLINE void row_sums5_impl(const float* rgb, const float* const g3[5], int n, float out[15]) {
+  for (int i = 0; i < 15; ++i) out[i] = 0.0f;
+  row_pass<0, 3>(rgb, g3, n, out);
+  row_pass<3, 5>(rgb, g3, n, out);
 }
 
 SHADELAB_TARGET_AVX2 void row_sums5_avx2(const float* rgb, const float* const g[5], int n, float out[15]) {
@@ -186,24 +191,19 @@ Sh9 project_sh9(const CubeMap& cube) {
   // TBB splits the rows, so it is the same for any thread count.
   std::vector<std::array<Moments, 6>> rows(nn);
   tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& range) {
-    std::vector<float> g(5 * (nn + 8));
+    const std::size_t stride = 3 * nn + 24;  // one expanded weight array (row_pass)
+    std::vector<float> g(5 * stride);
     for (int y = range.begin(); y != range.end(); ++y) {
       const auto yy = static_cast<std::size_t>(y);
       const float* w = fw.w.data() + yy * nn;
       const float* c = fw.c.data() + yy * nn;
-      float* g0 = g.data();
-      float* g1 = g0 + nn + 8;
-      float* g2 = g1 + nn + 8;
-      float* g3 = g2 + nn + 8;
-      float* g4 = g3 + nn + 8;
       for (std::size_t x = 0; x < nn; ++x) {
-        g0[x] = w[x];
-        g1[x] = w[x] * c[x];
-        g2[x] = g1[x] * c[x];
-        g3[x] = g1[x] * fw.sc[x];
-        g4[x] = g2[x] * fw.sc[x];
+        const float g1 = w[x] * c[x], g2 = g1 * c[x];
+        const float v[5] = {w[x], g1, g2, g1 * fw.sc[x], g2 * fw.sc[x]};
+        for (std::size_t k = 0; k < 5; ++k)
+          for (std::size_t ch = 0; ch < 3; ++ch) g[k * stride + 3 * x + ch] = v[k];
       }
-      const float* const gk[5] = {g0, g1, g2, g3, g4};
+      const float* const gk[5] = {g.data(), g.data() + stride, g.data() + 2 * stride, g.data() + 3 * stride, g.data() + 4 * stride};
       const double tc = (2.0 * y + 1.0) / n - 1.0;
       for (int f = 0; f < 6; ++f) {
         float s[15] = {};
@@ -249,17 +249,16 @@ Sh9 project_sh9(const Image& latlong) {
   const int w = latlong.width;
   const int h = latlong.height;
   const auto ww = static_cast<std::size_t>(w);
-  std::vector<float> table(5 * (ww + 8), 0.0f);
+  const std::size_t stride = 3 * ww + 24;  // one expanded weight array (row_pass)
+  std::vector<float> table(5 * stride, 0.0f);
   for (std::size_t x = 0; x < ww; ++x) {
     const double phi = two_pi * ((static_cast<double>(x) + 0.5) / w - 0.5);
-    table[x] = 1.0f;
-    table[(ww + 8) + x] = static_cast<float>(std::cos(phi));
-    table[2 * (ww + 8) + x] = static_cast<float>(std::sin(phi));
-    table[3 * (ww + 8) + x] = static_cast<float>(std::cos(2.0 * phi));
-    table[4 * (ww + 8) + x] = static_cast<float>(std::sin(2.0 * phi));
+    const double v[5] = {1.0, std::cos(phi), std::sin(phi), std::cos(2.0 * phi), std::sin(2.0 * phi)};
+    for (std::size_t k = 0; k < 5; ++k)
+      for (std::size_t ch = 0; ch < 3; ++ch) table[k * stride + 3 * x + ch] = static_cast<float>(v[k]);
   }
-  const float* const gk[5] = {table.data(), table.data() + (ww + 8), table.data() + 2 * (ww + 8), table.data() + 3 * (ww + 8),
-                              table.data() + 4 * (ww + 8)};
+  const float* const gk[5] = {table.data(), table.data() + stride, table.data() + 2 * stride, table.data() + 3 * stride,
+                              table.data() + 4 * stride};
   const bool avx = cpu_has_avx2_fma();
   std::vector<Moments> rows(static_cast<std::size_t>(h));
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& range) {
