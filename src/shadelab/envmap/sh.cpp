@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -241,19 +242,25 @@ Sh9 project_sh9(const CubeMap& cube) {
   return from_moments(total);
 }
 
-// The lat-long projection: on a ring (theta fixed) d = (sin t cos phi, cos t, sin t sin phi), so every
-// moment is a ring constant times one of the column weights 1, cos phi, sin phi, cos 2 phi, sin 2 phi
-// (cos^2 = (1 + cos 2 phi)/2, sin^2 = (1 - cos 2 phi)/2, cos sin = sin 2 phi / 2), times the ring's texel
-// solid angle.
+// The lat-long projection, exact for the piecewise-constant map (each texel's integral of Y_i dOmega, not
+// its centre value): in (phi, u = cos theta) dOmega = dphi du and d = (s cos phi, u, s sin phi) with
+// s = sqrt(1 - u^2), so every moment of a texel is a product of a phi integral over its column (of 1, cos phi,
+// sin phi, cos 2 phi, sin 2 phi: cos^2 = (1 + cos 2 phi)/2, sin^2 = (1 - cos 2 phi)/2, cos sin = sin 2 phi / 2)
+// and a u integral over its ring (of 1, u, u^2, s, u s, s^2 = 1 - u^2), all in closed form:
+//   int cos phi = sin b - sin a, int sin phi = cos a - cos b, int cos 2phi = (sin 2b - sin 2a)/2,
+//   int sin 2phi = (cos 2a - cos 2b)/2; int s du = (u s + asin u)/2, int u s du = -(1 - u^2)^(3/2)/3.
+// The column weights g_k are those phi integrals divided by the column width, so g_0 = 1.
 Sh9 project_sh9(const Image& latlong) {
   const int w = latlong.width;
   const int h = latlong.height;
   const auto ww = static_cast<std::size_t>(w);
+  const double dphi = two_pi / w;
   const std::size_t stride = 3 * ww + 24;  // one expanded weight array (row_pass)
   std::vector<float> table(5 * stride, 0.0f);
   for (std::size_t x = 0; x < ww; ++x) {
-    const double phi = two_pi * ((static_cast<double>(x) + 0.5) / w - 0.5);
-    const double v[5] = {1.0, std::cos(phi), std::sin(phi), std::cos(2.0 * phi), std::sin(2.0 * phi)};
+    const double a = two_pi * (static_cast<double>(x) / w - 0.5), b = a + dphi;  // latlong.h: phi = 2 pi (u - 0.5)
+    const double v[5] = {1.0, (std::sin(b) - std::sin(a)) / dphi, (std::cos(a) - std::cos(b)) / dphi,
+                         0.5 * (std::sin(2.0 * b) - std::sin(2.0 * a)) / dphi, 0.5 * (std::cos(2.0 * a) - std::cos(2.0 * b)) / dphi};
     for (std::size_t k = 0; k < 5; ++k)
       for (std::size_t ch = 0; ch < 3; ++ch) table[k * stride + 3 * x + ch] = static_cast<float>(v[k]);
   }
@@ -272,21 +279,24 @@ Sh9 project_sh9(const Image& latlong) {
       }
       auto sum = [&](int k) { return Rgb{s[3 * k], s[3 * k + 1], s[3 * k + 2]}; };
       const Rgb one = sum(0), cp = sum(1), sp = sum(2), c2 = sum(3), s2 = sum(4);
-      const double theta = pi * (y + 0.5) / h;
-      const double st = std::sin(theta), ct = std::cos(theta);
-      const double d_omega = latlong_texel_solid_angle(y, w, h);
+      // The ring's u integrals, from u1 = cos(pi (y + 1)/h) to u0 = cos(pi y/h).
+      const double u0 = y == 0 ? 1.0 : std::cos(pi * y / h), u1 = y + 1 == h ? -1.0 : std::cos(pi * (y + 1) / h);
+      auto int_s = [](double u) { return 0.5 * (u * std::sqrt(std::max(0.0, 1.0 - u * u)) + std::asin(u)); };
+      auto int_us = [](double u) { return -std::pow(std::max(0.0, 1.0 - u * u), 1.5) / 3.0; };
+      const double i1 = u0 - u1, iu = 0.5 * (u0 * u0 - u1 * u1), iuu = (u0 * u0 * u0 - u1 * u1 * u1) / 3.0;
+      const double is = int_s(u0) - int_s(u1), ius = int_us(u0) - int_us(u1), iss = i1 - iuu;
       Moments& m = rows[static_cast<std::size_t>(y)];
-      m[0] = one;
-      m[1] = cp * st;
-      m[2] = one * ct;
-      m[3] = sp * st;
-      m[4] = cp * (st * ct);
-      m[5] = sp * (st * ct);
-      m[6] = s2 * (0.5 * st * st);
-      m[7] = (one + c2) * (0.5 * st * st);
-      m[8] = one * (ct * ct);
-      m[9] = (one - c2) * (0.5 * st * st);
-      for (Rgb& v : m) v *= d_omega;
+      m[0] = one * i1;
+      m[1] = cp * is;
+      m[2] = one * iu;
+      m[3] = sp * is;
+      m[4] = cp * ius;
+      m[5] = sp * ius;
+      m[6] = s2 * (0.5 * iss);
+      m[7] = (one + c2) * (0.5 * iss);
+      m[8] = one * iuu;
+      m[9] = (one - c2) * (0.5 * iss);
+      for (Rgb& v : m) v *= dphi;
     }
   });
   Moments total{};
