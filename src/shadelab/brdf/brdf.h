@@ -12,7 +12,9 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "shadelab/color/rgb.h"
 #include "shadelab/core/vec.h"
@@ -23,6 +25,33 @@ struct BrdfSample {
   Vec3 wi{0.0, 0.0, 1.0};
   double pdf = 0.0;  // per unit solid angle
   Rgb weight;        // f cos(theta_i) / pdf
+};
+
+// The shading kernel a model's eval is (src/shadelab/kernels/*.sl): the kernel's name K (the .sl text defines
+// `KState K_prepare(KParams)` and `rgb K_eval(KState, vec3 wi, vec3 wo)`) and the values of the KParams
+// fields, in declaration order, taken from the same KParams the C++ eval was prepared from. The shader
+// exporter bakes these values into a shader (or packs them into a uniform block); it checks every name and
+// size against the struct it reads from the kernel text, so a binding that drifts from the kernel fails there.
+struct KernelField {
+  std::string name;
+  std::vector<double> values;  // real or int: 1 value; rgb: 3; real[N]: N
+};
+
+struct KernelBinding {
+  std::string kernel;
+  std::vector<KernelField> fields;
+
+  KernelBinding& add(std::string name, double v) { return add_values(std::move(name), {v}); }
+  KernelBinding& add(std::string name, int v) { return add_values(std::move(name), {static_cast<double>(v)}); }
+  KernelBinding& add(std::string name, const Rgb& c) { return add_values(std::move(name), {c.r, c.g, c.b}); }
+  template <std::size_t N>
+  KernelBinding& add(std::string name, const double (&a)[N]) {
+    return add_values(std::move(name), std::vector<double>(a, a + N));
+  }
+  KernelBinding& add_values(std::string name, std::vector<double> v) {
+    fields.push_back({std::move(name), std::move(v)});
+    return *this;
+  }
 };
 
 class Brdf {
@@ -41,9 +70,19 @@ class Brdf {
   // (the original Phong and Blinn-Phong, which divide by N.L; wrapped diffuse with w > 0).
   virtual bool is_reciprocal() const { return true; }
 
+  // False when the sampler's density jumps across a curve below the horizon (the support edge of the visible-
+  // normal samplers, the cut of the bounded one), which quadrature over the sphere cannot resolve. The
+  // analysis then integrates the density over the upper hemisphere only and checks the mass below the horizon
+  // against the sampler's share of samples there (analysis/chi_square.h). Samples below carry weight 0.
+  virtual bool pdf_smooth_below_horizon() const { return true; }
+
   // The albedo of the model's Lambertian (view-independent) part, pi times its constant f: what a game
   // multiplies by diffuse irradiance / pi. Black for a model without one.
   virtual Rgb diffuse_albedo() const { return {}; }
+
+  // The kernel this model's eval is and its parameter values (see KernelBinding); every registered model
+  // has one (the shader tests check), test doubles need none.
+  virtual std::optional<KernelBinding> kernel_binding() const { return std::nullopt; }
 };
 
 using BrdfPtr = std::unique_ptr<const Brdf>;

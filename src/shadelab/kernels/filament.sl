@@ -31,6 +31,7 @@ struct FilamentState {
   real alpha;
   int diffuse;
   int energy_compensation;
+  GgxEnergyRows e_rows;  // the energy table's rows at alpha (height-correlated)
 };
 
 inline FilamentState filament_prepare(FilamentParams p) {
@@ -40,6 +41,7 @@ inline FilamentState filament_prepare(FilamentParams p) {
   s.alpha = p.perceptual_roughness * p.perceptual_roughness;
   s.diffuse = p.diffuse;
   s.energy_compensation = p.energy_compensation;
+  s.e_rows = ggx_energy_rows(GGX_ENERGY_G_CORRELATED, s.alpha);
   return s;
 }
 
@@ -54,7 +56,7 @@ inline rgb filament_eval(FilamentState s, vec3 wi, vec3 wo) {
   if (dv > 0.0 && lh > 0.0) {
     rgb fr = F_schlick_rgb(lh, s.f0) * dv;
     if (s.energy_compensation == 1) {
-      fr = fr * (rgb(1.0) + s.f0 * (1.0 / ggx_energy(GGX_ENERGY_G_CORRELATED, wo.z, s.alpha) - 1.0));
+      fr = fr * (rgb(1.0) + s.f0 * (1.0 / ggx_energy_at(s.e_rows, wo.z) - 1.0));
     }
     f = f + fr;
   }

@@ -97,7 +97,7 @@ inline rgb F_by_kind_rgb(int kind, real cos_i, rgb ior, rgb k, rgb f0) {
 // Hemispherical average F_avg = 2 integral_0^1 F(mu) mu d(mu) of that term (Kulla & Conty 2017, "Revisiting
 // Physically Based Shading at Imageworks", slide 18). Schlick in closed form, (20 f0 + 1) / 21 (2 integral
 // (1 - mu)^5 mu d(mu) = 1/21); the exact forms by composite Simpson's rule over 32 intervals in mu (error
-// below 1e-6 for the indices of fresnel_materials, tested against adaptive quadrature).
+// below 2e-6 absolute for the indices of fresnel_materials, tested against adaptive quadrature).
 inline rgb F_average_by_kind_rgb(int kind, rgb ior, rgb k, rgb f0) {
   if (kind == FRESNEL_NONE) return rgb(1.0);
   if (kind == FRESNEL_SCHLICK) return (f0 * 20.0 + 1.0) / 21.0;

@@ -41,13 +41,6 @@ inline real ggx_energy_row_alpha(int j) {
   return GGX_ENERGY_C * (exp(y * log(1.0 + GGX_ENERGY_ALPHA_MAX / GGX_ENERGY_C)) - 1.0);
 }
 
-// The continuous column coordinate x (C - 1) of mu in row j (j >= 1).
-inline real ggx_energy_column(int j, real mu) {
-  real kappa = ggx_energy_row_alpha(j);
-  real m = clamp(mu, 0.0, 1.0);
-  return sqrt(log(1.0 + m / kappa) / log(1.0 + 1.0 / kappa)) * real(GGX_ENERGY_COLS - 1);
-}
-
 // Texel i of row j with linearly extrapolated ghosts at i = -1 and i = C.
 inline real ggx_energy_texel_ghost(int g, int j, int i) {
   if (i < 0) return 2.0 * ggx_energy_texel(g, j, 0) - ggx_energy_texel(g, j, 1);
@@ -57,10 +50,12 @@ inline real ggx_energy_texel_ghost(int g, int j, int i) {
   return ggx_energy_texel(g, j, i);
 }
 
-// E of row j at mu: Catmull-Rom in the row's column coordinate. Row 0 (alpha = 0) is 1.
-inline real ggx_energy_row(int g, int j, real mu) {
+// E of row j at mu: Catmull-Rom in the row's column coordinate x (C - 1), x = sqrt(log(1 + mu/kappa) *
+// inv_log), kappa = alpha_j, inv_log = 1 / log(1 + 1/kappa). Row 0 (alpha = 0) is 1.
+inline real ggx_energy_row_mapped(int g, int j, real kappa, real inv_log, real mu) {
   if (j == 0) return 1.0;
-  real x = ggx_energy_column(j, mu);
+  real m = clamp(mu, 0.0, 1.0);
+  real x = sqrt(log(1.0 + m / kappa) * inv_log) * real(GGX_ENERGY_COLS - 1);
   int i = int(min(floor(x), real(GGX_ENERGY_COLS - 2)));
   real s = x - real(i);
   real e = 0.0;
@@ -68,7 +63,13 @@ inline real ggx_energy_row(int g, int j, real mu) {
   return e;
 }
 
-// The row below alpha and the position t in [0, 1] inside its cell.
+inline real ggx_energy_row(int g, int j, real mu) {
+  if (j == 0) return 1.0;
+  real kappa = ggx_energy_row_alpha(j);
+  return ggx_energy_row_mapped(g, j, kappa, 1.0 / log(1.0 + 1.0 / kappa), mu);
+}
+
+// The continuous row coordinate of alpha.
 inline real ggx_energy_row_position(real alpha) {
   real a = clamp(alpha, 0.0, 1.0);
   return log(1.0 + a / GGX_ENERGY_C) / log(1.0 + GGX_ENERGY_ALPHA_MAX / GGX_ENERGY_C) *
@@ -81,26 +82,74 @@ inline real ggx_energy_row_weight(int j, int k, real t) {
   return catmull_rom_weight(k, t);
 }
 
-inline real ggx_energy(int g, real mu, real alpha) {
+// Everything about the four rows around one alpha that does not depend on mu: a model prepares it once,
+// so that each lookup costs four logarithms and sixteen texel fetches.
+struct GgxEnergyRows {
+  int g;
+  int j;  // rows j - 1 .. j + 2
+  real w0;
+  real w1;
+  real w2;
+  real w3;
+  real kappa0;
+  real kappa1;
+  real kappa2;
+  real kappa3;
+  real inv_log0;
+  real inv_log1;
+  real inv_log2;
+  real inv_log3;
+};
+
+inline real ggx_energy_inv_log(int row) {
+  return row > 0 ? 1.0 / log(1.0 + 1.0 / ggx_energy_row_alpha(row)) : 0.0;
+}
+
+inline GgxEnergyRows ggx_energy_rows(int g, real alpha) {
+  GgxEnergyRows r;
+  r.g = g;
   real p = ggx_energy_row_position(alpha);
-  int j = int(min(floor(p), real(GGX_ENERGY_ROWS - 3)));
-  real t = p - real(j);
-  real e = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    real w = ggx_energy_row_weight(j, k, t);
-    if (w != 0.0) e = e + w * ggx_energy_row(g, j - 1 + k, mu);
+  r.j = int(min(floor(p), real(GGX_ENERGY_ROWS - 3)));
+  real t = p - real(r.j);
+  r.w0 = ggx_energy_row_weight(r.j, 0, t);
+  r.w1 = ggx_energy_row_weight(r.j, 1, t);
+  r.w2 = ggx_energy_row_weight(r.j, 2, t);
+  r.w3 = ggx_energy_row_weight(r.j, 3, t);
+  r.kappa0 = r.j > 1 ? ggx_energy_row_alpha(r.j - 1) : 0.0;
+  r.kappa1 = r.j > 0 ? ggx_energy_row_alpha(r.j) : 0.0;
+  r.kappa2 = ggx_energy_row_alpha(r.j + 1);
+  r.kappa3 = ggx_energy_row_alpha(r.j + 2);
+  r.inv_log0 = r.j > 1 ? ggx_energy_inv_log(r.j - 1) : 0.0;
+  r.inv_log1 = ggx_energy_inv_log(r.j);
+  r.inv_log2 = ggx_energy_inv_log(r.j + 1);
+  r.inv_log3 = ggx_energy_inv_log(r.j + 2);
+  return r;
+}
+
+// E(mu, alpha) for the prepared alpha.
+inline real ggx_energy_at(GgxEnergyRows r, real mu) {
+  real e = r.w1 * ggx_energy_row_mapped(r.g, r.j, r.kappa1, r.inv_log1, mu) +
+           r.w2 * ggx_energy_row_mapped(r.g, r.j + 1, r.kappa2, r.inv_log2, mu);
+  if (r.j > 0) {
+    e = e + r.w0 * ggx_energy_row_mapped(r.g, r.j - 1, r.kappa0, r.inv_log0, mu) +
+        r.w3 * ggx_energy_row_mapped(r.g, r.j + 2, r.kappa3, r.inv_log3, mu);
   }
   return e;
 }
 
-inline real ggx_energy_average(int g, real alpha) {
-  real p = ggx_energy_row_position(alpha);
-  int j = int(min(floor(p), real(GGX_ENERGY_ROWS - 3)));
-  real t = p - real(j);
-  real e = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    real w = ggx_energy_row_weight(j, k, t);
-    if (w != 0.0) e = e + w * ggx_energy_average_texel(g, j - 1 + k);
+// E_avg(alpha) for the prepared alpha: the same weights over the rows' averages.
+inline real ggx_energy_average_at(GgxEnergyRows r) {
+  real e = r.w1 * ggx_energy_average_texel(r.g, r.j) + r.w2 * ggx_energy_average_texel(r.g, r.j + 1);
+  if (r.j > 0) {
+    e = e + r.w0 * ggx_energy_average_texel(r.g, r.j - 1) + r.w3 * ggx_energy_average_texel(r.g, r.j + 2);
   }
   return e;
+}
+
+inline real ggx_energy(int g, real mu, real alpha) {
+  return ggx_energy_at(ggx_energy_rows(g, alpha), mu);
+}
+
+inline real ggx_energy_average(int g, real alpha) {
+  return ggx_energy_average_at(ggx_energy_rows(g, alpha));
 }

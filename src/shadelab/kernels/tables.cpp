@@ -153,12 +153,27 @@ const GgxEnergyTable& ggx_energy_table(int g) {
   return correlated;
 }
 
-real ggx_energy_texel(int g, int row, int col) {
-  return texels(g).e[static_cast<std::size_t>(row * GGX_ENERGY_COLS + col)];
+// Both Smith forms side by side, as kernels.h's fetches index them. Built from the per-form tables, each
+// computed at its first use; the texels alone first, since the averages integrate the interpolated texels.
+const double* ggx_energy_texels() {
+  static const std::vector<double> all = [] {
+    static_assert(GGX_ENERGY_ROWS == 32 && GGX_ENERGY_COLS == 32, "kernels.h indexes 32 x 32 tables");
+    std::vector<double> v(texels(GGX_ENERGY_G_SEPARABLE).e);
+    const std::vector<double>& c = texels(GGX_ENERGY_G_CORRELATED).e;
+    v.insert(v.end(), c.begin(), c.end());
+    return v;
+  }();
+  return all.data();
 }
 
-real ggx_energy_average_texel(int g, int row) {
-  return ggx_energy_table(g).e_avg[static_cast<std::size_t>(row)];
+const double* ggx_energy_average_texels() {
+  static const std::vector<double> all = [] {
+    std::vector<double> v(ggx_energy_table(GGX_ENERGY_G_SEPARABLE).e_avg);
+    const std::vector<double>& c = ggx_energy_table(GGX_ENERGY_G_CORRELATED).e_avg;
+    v.insert(v.end(), c.begin(), c.end());
+    return v;
+  }();
+  return all.data();
 }
 
 }  // namespace shadelab::kernel

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -13,11 +14,14 @@
 #include "shadelab/envmap/irradiance.h"
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/envmap/sh.h"
+#include "shadelab/kernels/kernels.h"
 #include "shadelab/brdf/microfacet.h"
 #include "shadelab/brdf/wrapped_diffuse.h"
 #include "shadelab/render/accel.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/materials.h"
+#include "shadelab/render/threads.h"
+#include "shadelab/scene/limits.h"
 #include "shadelab/sampling/rng.h"
 
 namespace shadelab {
@@ -25,6 +29,12 @@ namespace shadelab {
 namespace {
 
 constexpr int kAlbedoBins = 32;
+
+// The prefiltered level's Phong exponent for a GGX-like lobe of perceptual roughness r (alpha = r^2).
+double phong_exponent_from_alpha(double perceptual_roughness) {
+  const double alpha = perceptual_roughness * perceptual_roughness;
+  return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(alpha));
+}
 
 // The Phong exponent whose lobe matches a material's specular lobe, for the prefiltered-map level:
 // Blinn-Phong-like lobes (N.H)^n have n/4; Beckmann roughness m and Ward's alpha convert by n = 2/m^2 - 2.
@@ -43,6 +53,18 @@ double phong_exponent(const std::string& model, const ParamValues& p) {
     return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(a));
   }
   if (model == "lafortune") return p.lobes("lobes").front()[3];
+  // GGX's alpha is a roughness like Beckmann's m (both the RMS slope's scale; Walter et al. 2007 section 5.2).
+  if (model == "ggx") {
+    double ax = p.scalar("alpha");
+    double ay = ax;
+    if (p.is_set("roughness")) ax = ay = p.scalar("roughness") * p.scalar("roughness");
+    if (p.is_set("alpha_x")) {
+      ax = p.scalar("alpha_x");
+      ay = p.scalar("alpha_y");
+    }
+    return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(std::sqrt(ax * ay)));
+  }
+  if (model == "filament") return phong_exponent_from_alpha(p.scalar("perceptual_roughness"));
   return 0.0;  // no specular lobe
 }
 
@@ -55,6 +77,13 @@ class GameShader {
     if (auto ok = m_materials.prepare(m_scene); !ok) return ok.error();
     // Punctual lights as the engine sees them: radiometric E_perp here, the game colour is E_perp / pi.
     for (const auto& l : m_scene.lights) {
+      const auto* d = std::get_if<DirectionalLight>(&l);
+      if (d != nullptr && (d->game_sh || m_options.directional_in_sh) && m_options.diffuse == GameAmbient::sh9) {
+        // D3DX-style: the delta pi c delta(w - d) projected and scaled by 16/17 (sh.h), c = E_perp / pi.
+        m_sh_lights += sh9_directional_light(d->to_light, d->irradiance * inv_pi, true);
+        m_has_sh_lights = true;
+        continue;
+      }
       if (std::holds_alternative<DirectionalLight>(l) || std::holds_alternative<PointLight>(l) ||
           std::holds_alternative<SpotLight>(l)) {
         m_punctual.push_back(l);
@@ -83,6 +112,7 @@ class GameShader {
         m_specular = std::move(chain).value();
       }
     }
+    m_sh += m_sh_lights;  // the environment's coefficients (zero without one) and the D3DX-style lights
     // Per material: Phong exponent and the specular lobe's directional albedo over cos(theta_o).
     for (std::size_t i = 0; i < m_scene.materials.size(); ++i) {
       const Material& m = m_scene.materials[i];
@@ -94,6 +124,7 @@ class GameShader {
         info.exponent = phong_exponent(m.model, *values);
         info.blinn_like = m.model.find("blinn") != std::string::npos || m.model == "minimalist-cook-torrance" ||
                           m.model == "cook-torrance";
+        if (m.metallic_roughness_texture >= 0) info.roughness_factor = values->scalar("perceptual_roughness");
         BrdfPtr holder;
         const Brdf* f = m_materials.brdf(static_cast<int>(i), {0.5, 0.5}, holder);
         if (const auto* w = dynamic_cast<const WrappedDiffuse*>(f)) info.wrap = w->wrap();
@@ -152,12 +183,14 @@ class GameShader {
           if (m_accel.occluded(shadow)) continue;
         }
         const Rgb colour_game = in.irradiance_perp * inv_pi;  // the game unit: E_perp = pi x colour
-        // The game shading equation: L = pi f c cos (drop_pi: the bug of forgetting the pi).
-        const double unit = m_options.drop_pi ? 1.0 : pi;
-        l += f->eval(wi, wo) * colour_game * (unit * wi.z);
+        // The game shading equation L = pi f c cos, the kernel kernels/game_shading.sl; drop_pi is the bug of
+        // forgetting the pi: the game colour used as if it were the irradiance.
+        const Rgb fr = f->eval(wi, wo);
+        l += m_options.drop_pi ? kernel::punctual_radiometric(fr, colour_game, wi.z)
+                               : kernel::punctual_game(fr, colour_game, wi.z);
       }
     }
-    if (m_env.has_light()) {
+    if (m_env.has_light() || m_has_sh_lights) {
       const Vec3 n = sf.frame.n;
       if (m_options.diffuse != GameAmbient::none) {
         Rgb e_over_pi;
@@ -168,6 +201,9 @@ class GameShader {
         }
         l += f->diffuse_albedo() * e_over_pi;
       }
+    }
+    if (m_env.has_light()) {
+      const Vec3 n = sf.frame.n;
       if (m_options.specular_ambient && info.exponent > 0.0 && !m_specular.levels.empty()) {
         double n_phong = info.exponent;
         const Material& m = m_scene.materials[static_cast<std::size_t>(hit.material)];
@@ -176,6 +212,11 @@ class GameShader {
           const double g = sample_texture(m_scene.textures[static_cast<std::size_t>(m.gloss_texture)], uv).r;
           const double n_tex = m.gloss_encoding.exponent_from_gloss(g);
           n_phong = info.blinn_like ? phong_exponent_from_blinn_phong(n_tex) : n_tex;
+        }
+        if (m.metallic_roughness_texture >= 0) {  // glTF: roughness = factor x green (materials.cpp)
+          const Vec2 uv{hit.uv.x * m.uv_scale.x, hit.uv.y * m.uv_scale.y};
+          const double g = sample_texture(m_scene.textures[static_cast<std::size_t>(m.metallic_roughness_texture)], uv).g;
+          n_phong = phong_exponent_from_alpha(std::clamp(info.roughness_factor * g, 0.01, 1.0));
         }
         const Vec3 r = reflect(wo_world, n);
         const double c = std::clamp(wo.z, 0.0, 1.0);
@@ -195,6 +236,7 @@ class GameShader {
     double exponent = 0.0;
     bool blinn_like = false;
     double wrap = 0.0;
+    double roughness_factor = 1.0;  // perceptual roughness that a metallic-roughness texture multiplies
     std::array<Rgb, kAlbedoBins> specular_albedo{};
   };
 
@@ -217,6 +259,8 @@ class GameShader {
   MaterialSet m_materials;
   std::vector<SceneLight> m_punctual;
   Sh9 m_sh;
+  Sh9 m_sh_lights;  // directional lights added D3DX-style (game_sh)
+  bool m_has_sh_lights = false;
   CubeMap m_irradiance;
   PrefilteredCube m_specular;
   std::vector<MaterialInfo> m_info;
@@ -226,6 +270,7 @@ class GameShader {
 
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (auto limits = check_scene_limits(scene); !limits) return limits.error();
   GameShader shader(scene, options);
   if (auto ok = shader.prepare(); !ok) return ok.error();
   const int w = scene.camera.width;
@@ -239,7 +284,8 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
   RenderResult result;
   result.beauty = Image(w, h);
   const int threads = options.threads >= 0 ? options.threads : scene.settings.threads;
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  tbb::task_arena arena(arena_threads(threads));
+  std::atomic<std::uint64_t> nonfinite{0};
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
       for (int y = r.rows().begin(); y != r.rows().end(); ++y) {
@@ -252,7 +298,9 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
               const double py = y + (j + 0.5) / spp_side;
               const double sx = (2.0 * px / w - 1.0) * tan_half * aspect;
               const double sy = (1.0 - 2.0 * py / h) * tan_half;
-              sum += shader.shade(Ray{scene.camera.position, normalize(forward + right * sx + up * sy)});
+              const Rgb l = shader.shade(Ray{scene.camera.position, normalize(forward + right * sx + up * sy)});
+              if (!is_finite(l)) nonfinite.fetch_add(1, std::memory_order_relaxed);
+              sum += l;
             }
           }
           result.beauty.set(x, y, sum / (spp_side * spp_side));
@@ -261,6 +309,7 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
     });
   });
   result.stats.spp_done = spp_side * spp_side;
+  result.stats.nonfinite_samples = nonfinite.load();
   result.stats.camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(spp_side * spp_side);
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;

@@ -15,6 +15,8 @@
 #include "shadelab/render/accel.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/materials.h"
+#include "shadelab/render/threads.h"
+#include "shadelab/scene/limits.h"
 #include "shadelab/sampling/rng.h"
 #include "shadelab/sampling/warp.h"
 
@@ -45,6 +47,7 @@ struct LightSample {
 
 struct Counters {
   std::uint64_t rays = 0;
+  std::uint64_t nonfinite = 0;  // samples whose radiance is NaN or infinite
 };
 
 struct FirstHit {
@@ -441,6 +444,7 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   const int max_depth = options.max_depth > 0 ? options.max_depth : scene.settings.max_depth;
   const int threads = options.threads >= 0 ? options.threads : scene.settings.threads;
   if (spp < 1) return make_error("render: samples per pixel must be >= 1");
+  if (auto limits = check_scene_limits(scene); !limits) return limits.error();
   Integrator integrator(scene, options.mode, max_depth);
   auto ok = integrator.prepare();
   if (!ok) return ok.error();
@@ -453,10 +457,11 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   std::vector<Vec3> normal_first(options.aovs ? pixels : 0);
   std::vector<double> depth_first(options.aovs ? pixels : 0, 0.0);
   std::atomic<std::uint64_t> rays{0};
+  std::atomic<std::uint64_t> nonfinite{0};
   // Passes of up to 8 samples: Ctrl-C and progress react within one pass.
   const int per_pass = std::clamp(spp / 32, 1, 8);
   RenderResult result;
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  tbb::task_arena arena(arena_threads(threads));
   int done = 0;
   while (done < spp) {
     if (options.cancel != nullptr && options.cancel->load() && done > 0) {
@@ -476,7 +481,9 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
               Pcg32 rng(mix64(scene.settings.seed ^ mix64(pi_)), static_cast<std::uint64_t>(s));
               const Ray ray = camera.ray(x + rng.next_double(), y + rng.next_double());
               FirstHit first;
-              acc += integrator.li(ray, rng, counters, options.aovs ? &first : nullptr);
+              const Rgb l = integrator.li(ray, rng, counters, options.aovs ? &first : nullptr);
+              if (!is_finite(l)) ++counters.nonfinite;
+              acc += l;
               if (options.aovs) {
                 albedo_sum[pi_] += first.albedo;
                 if (s == 0) {
@@ -489,6 +496,7 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
           }
         }
         rays.fetch_add(counters.rays, std::memory_order_relaxed);
+        nonfinite.fetch_add(counters.nonfinite, std::memory_order_relaxed);
       });
     });
     done = s1;
@@ -514,6 +522,7 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   result.stats.spp_done = done;
   result.stats.camera_rays = static_cast<std::uint64_t>(done) * pixels;
   result.stats.rays = rays.load();
+  result.stats.nonfinite_samples = nonfinite.load();
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }

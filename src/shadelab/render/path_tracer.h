@@ -48,6 +48,9 @@ struct RenderStats {
   std::uint64_t rays = 0;  // all rays traced: camera, bounce and shadow
   double seconds = 0.0;
   bool cancelled = false;
+  // Samples whose radiance was NaN or infinite (kept in the image as they are): a render that has any is
+  // wrong, and the CLI says so and exits with 1 (docs/cli.md).
+  std::uint64_t nonfinite_samples = 0;
 };
 
 struct RenderResult {
