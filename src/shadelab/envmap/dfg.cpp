@@ -24,8 +24,8 @@ struct Integrand {
 
   // The half vector at GGX sampling variable xi and azimuth phi: tan(theta_h) = alpha sqrt(xi / (1 - xi))
   // (Walter et al. 2007 eq. 35, solved for theta_h), so that D cos(theta_h) d(omega_h) = d(xi) d(phi)/(2 pi).
-  Vec3 half_vector(double xi, double phi) const {
-    const double t = alpha * std::sqrt(xi / (1.0 - xi));
+  Vec3 half_vector(double xi, double phi) const { return half_vector_tan(alpha * std::sqrt(xi / (1.0 - xi)), phi); }
+  Vec3 half_vector_tan(double t, double phi) const {
     const double c = 1.0 / std::sqrt(1.0 + t * t);
     const double s = t * c;
     return {s * std::cos(phi), s * std::sin(phi), c};
@@ -71,28 +71,38 @@ DfgValue dfg_quadrature(double mu, double alpha, double tolerance) {
   const double sin_v = f.v.x;
   // The horizon of l = reflect(-v, h) for h at azimuth phi: l.z > 0 <=> theta_h < (delta + pi/2) / 2 with
   // delta = atan2(sin(theta_v) cos(phi), cos(theta_v)) (l.z = 2 (V.H) N.H - N.V = R cos(2 theta_h - delta)),
-  // as xi = tan^2 / (alpha^2 + tan^2).
-  const auto xi_max = [&](double phi) {
+  // as u = -ln(1 - xi) = ln(1 + tan^2 / alpha^2) (below).
+  const auto u_max = [&](double phi) {
     const double theta = 0.5 * (std::atan2(sin_v * std::cos(phi), mu) + 0.5 * pi);
-    const double t = std::tan(theta);
-    return t * t / (alpha * alpha + t * t);
+    const double t = std::tan(theta) / alpha;
+    return std::log1p(t * t);
   };
   QuadratureOptions options;
   options.rel_tol = 0.0;
-  options.abs_tol = tolerance;
+  options.abs_tol = 0.5 * tolerance;
   options.initial_intervals = 4;
   options.max_subdivisions = 4000;
+  // Each inner integral (over xi at one phi, already divided by pi) adds at most its error times the
+  // outer length pi / pi = 1 to the total: a quarter of the tolerance each leaves room for the outer rule.
+  QuadratureOptions inner;
+  inner.rel_tol = 0.0;
+  inner.abs_tol = 0.25 * tolerance;
+  inner.max_subdivisions = 4000;
   // phi over [0, pi]: the integrand is even in phi (v lies in the XZ plane), so d(phi)/(2 pi) over the full
   // circle is d(phi)/pi over half of it.
   const VectorQuadratureResult r = integrate_2d_vector(
-      [&](double phi, double xi, std::span<double> out) {
+      [&](double phi, double u, std::span<double> out) {
+        // xi = 1 - exp(-u), d(xi) = exp(-u) du: where the lobe is thin (small alpha) all of its shape sits
+        // in xi within alpha^2 of 1; in u it is spread over [0, 2 ln(1/alpha)] and smooth.
+        // tan(theta_h) = alpha sqrt(xi / (1 - xi)) = alpha sqrt(e^u - 1).
         double a = 0.0;
         double b = 0.0;
-        f.eval(f.half_vector(xi, phi), a, b);
-        out[0] = a * inv_pi;
-        out[1] = b * inv_pi;
+        f.eval(f.half_vector_tan(alpha * std::sqrt(std::expm1(u)), phi), a, b);
+        const double w = std::exp(-u) * inv_pi;
+        out[0] = a * w;
+        out[1] = b * w;
       },
-      2, 0.0, pi, [](double) { return 0.0; }, xi_max, options);
+      2, 0.0, pi, [](double) { return 0.0; }, u_max, options, inner);
   DfgValue value;
   value.a = r.value[0];
   value.b = r.value[1];

@@ -34,7 +34,7 @@ struct DfgOptions {
   int size = 128;
   bool multiscatter = false;
   int samples = 0;             // 0: adaptive quadrature; > 0: Hammersley importance sampling
-  double tolerance = 1e-7;     // absolute error per texel and channel (quadrature)
+  double tolerance = 1e-6;     // absolute error per texel and channel (quadrature)
 };
 
 struct DfgTable {
@@ -58,7 +58,7 @@ struct DfgValue {
   double error = 0.0;
   std::int64_t evaluations = 0;
 };
-DfgValue dfg_quadrature(double mu, double alpha, double tolerance = 1e-7);
+DfgValue dfg_quadrature(double mu, double alpha, double tolerance = 1e-6);
 // The same by `samples` Hammersley points importance-sampled from D cos(theta_h).
 DfgValue dfg_sampled(double mu, double alpha, int samples);
 
