@@ -12,7 +12,16 @@ packages=(
   libembree-dev libtinyobjloader-dev libtinygltf-dev
   blender-data
   glslang-tools spirv-tools mesa-vulkan-drivers libvulkan-dev chromium
+  python3-numpy
 )
+
+# The independent KTX 2 reader of the container tests (tools/containers): npm's ktx-parse, pinned by its
+# package-lock.json; `npm ls` (offline) says whether the pinned version is already there.
+containers="$(cd "$(dirname "$0")/.." && pwd)/tools/containers"
+if ! npm ls --prefix "$containers" ktx-parse >/dev/null 2>&1; then
+  echo "setup: npm ci in tools/containers"
+  (cd "$containers" && npm ci --no-audit --no-fund)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
