@@ -175,7 +175,7 @@ void append_texels(std::vector<char>& out, const Image& face, TexelFormat f, Tex
         for (int k = 0; k < 4; ++k) {
           const float v = k < 3 ? c[k] : 1.0f;
           const float cv = std::isfinite(v) ? std::clamp(v, -half_max, half_max) : v;
-          local.clamped_values += cv != v ? 1 : 0;
+          local.clamped_values += std::isfinite(v) && cv != v ? 1 : 0;
           put(out, Imath::half(cv).bits());
         }
         break;
