@@ -15,6 +15,14 @@ packages=(
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
 )
 
+# The independent KTX 2 reader of the container tests (tools/containers): npm's ktx-parse, pinned by its
+# package-lock.json; `npm ls` (offline) says whether the pinned version is already there.
+containers="$(cd "$(dirname "$0")/.." && pwd)/tools/containers"
+if ! npm ls --prefix "$containers" ktx-parse >/dev/null 2>&1; then
+  echo "setup: npm ci in tools/containers"
+  (cd "$containers" && npm ci --no-audit --no-fund)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
