@@ -57,8 +57,8 @@ GgxRoughnessMapping parse_ggx_roughness_mapping(const std::string& name);
 struct GgxPrefilterOptions {
   int levels = 0;     // 0: down to 1 x 1 (log2(size) + 1 levels)
   GgxRoughnessMapping mapping = GgxRoughnessMapping::linear;
-  int samples = 512;  // Hammersley half vectors per output texel
-  double lod_bias = 1.0;  // Krivanek & Colbert's bias (one level coarser than the solid-angle match)
+  int samples = 1024;     // Hammersley half vectors per output texel
+  double lod_bias = 0.0;  // added to the solid-angle-matched level (Krivanek & Colbert suggest 1)
   ProgressFn progress;    // called on the calling thread between chunks of rows
 };
 
