@@ -17,16 +17,6 @@ namespace shadelab::python {
 
 namespace {
 
-const char* kind_name(ParamKind k) {
-  switch (k) {
-    case ParamKind::scalar: return "scalar";
-    case ParamKind::color: return "color";
-    case ParamKind::choice: return "choice";
-    case ParamKind::lobes: return "lobes";
-  }
-  return "?";
-}
-
 py::list number_list(const std::vector<double>& v) {
   py::list l;
   for (double x : v) l.append(x);
@@ -57,7 +47,7 @@ py::list models() {
     for (const auto& p : m.params) {
       py::dict d;
       d["name"] = p.name;
-      d["kind"] = kind_name(p.kind);
+      d["kind"] = param_kind_name(p.kind);
       d["default"] = param_value(p, defaults);
       d["default_text"] = p.default_value;
       d["description"] = p.description;

@@ -78,21 +78,12 @@ py::list materials() {
   return out;
 }
 
-const char* quantity_name(LightQuantity q) {
-  switch (q) {
-    case LightQuantity::irradiance: return "irradiance (directional lights)";
-    case LightQuantity::intensity: return "intensity (point and spot lights)";
-    case LightQuantity::radiance: return "radiance (area lights, environments)";
-  }
-  return "";
-}
-
 py::list units() {
   py::list out;
   for (const auto& u : light_units()) {
     py::dict d;
     d["name"] = std::string(u.name);
-    d["quantity"] = quantity_name(u.quantity);
+    d["quantity"] = light_quantity_name(u.quantity);
     d["description"] = std::string(u.description);
     out.append(d);
   }

@@ -13,16 +13,6 @@ namespace shadelab::cli {
 
 namespace {
 
-const char* kind_name(ParamKind k) {
-  switch (k) {
-    case ParamKind::scalar: return "scalar";
-    case ParamKind::color: return "color";
-    case ParamKind::choice: return "choice";
-    case ParamKind::lobes: return "lobes";
-  }
-  return "?";
-}
-
 struct BrdfOptions {
   std::string model;
   std::vector<std::string> params;
@@ -43,7 +33,7 @@ void run_list(bool json) {
   for (const auto& m : brdf_models()) {
     nlohmann::json params = nlohmann::json::array();
     for (const auto& p : m.params) {
-      nlohmann::json jp = {{"name", p.name}, {"kind", kind_name(p.kind)}, {"default", p.default_value},
+      nlohmann::json jp = {{"name", p.name}, {"kind", param_kind_name(p.kind)}, {"default", p.default_value},
                            {"description", p.description}};
       if (p.kind == ParamKind::choice) {
         jp["choices"] = p.choices;
@@ -60,7 +50,7 @@ void run_list(bool json) {
         const std::string range = p.kind == ParamKind::choice
                                       ? fmt::format("{}", fmt::join(p.choices, " | "))
                                       : fmt::format("[{}, {}]", p.min, p.max);
-        fmt::print("  {:<14} {:<7} default {:<14} {:<28} {}\n", p.name, kind_name(p.kind), p.default_value, range,
+        fmt::print("  {:<14} {:<7} default {:<14} {:<28} {}\n", p.name, param_kind_name(p.kind), p.default_value, range,
                    p.description);
       }
     }

@@ -15,14 +15,6 @@
 namespace shadelab::cli {
 
 namespace {
-const char* quantity_name(LightQuantity q) {
-  switch (q) {
-    case LightQuantity::irradiance: return "irradiance (directional lights)";
-    case LightQuantity::intensity: return "intensity (point and spot lights)";
-    case LightQuantity::radiance: return "radiance (area lights, environments)";
-  }
-  return "";
-}
 
 struct LightOptions {
   std::string value;
@@ -37,8 +29,8 @@ void run_light(const LightOptions& o) {
   if (o.list) {
     nlohmann::json units = nlohmann::json::array();
     for (const auto& u : light_units()) {
-      units.push_back({{"name", u.name}, {"quantity", quantity_name(u.quantity)}, {"description", u.description}});
-      if (!o.json) fmt::print("{:<14} {:<38} {}\n", u.name, quantity_name(u.quantity), u.description);
+      units.push_back({{"name", u.name}, {"quantity", light_quantity_name(u.quantity)}, {"description", u.description}});
+      if (!o.json) fmt::print("{:<14} {:<38} {}\n", u.name, light_quantity_name(u.quantity), u.description);
     }
     if (o.json) print_json({{"units", units}});
     return;

@@ -21,6 +21,17 @@ enum class ParamKind {
   lobes,   // groups of numbers separated by ';', each group of group_size numbers separated by ','
 };
 
+// The kind's name as `brdf list --json` and shadelab.models() print it.
+inline const char* param_kind_name(ParamKind k) {
+  switch (k) {
+    case ParamKind::scalar: return "scalar";
+    case ParamKind::color: return "color";
+    case ParamKind::choice: return "choice";
+    case ParamKind::lobes: return "lobes";
+  }
+  return "?";
+}
+
 struct ParamSpec {
   std::string name;
   ParamKind kind = ParamKind::scalar;

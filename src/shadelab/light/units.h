@@ -57,6 +57,16 @@ enum class LightQuantity {
   radiance,    // area lights, environments: W/m2/sr, nit, game (same number as radiometric)
 };
 
+// The quantity's name as `light --list` and shadelab's Python unit list print it.
+inline const char* light_quantity_name(LightQuantity q) {
+  switch (q) {
+    case LightQuantity::irradiance: return "irradiance (directional lights)";
+    case LightQuantity::intensity: return "intensity (point and spot lights)";
+    case LightQuantity::radiance: return "radiance (area lights, environments)";
+  }
+  return "";
+}
+
 struct LightUnit {
   std::string_view name;
   LightQuantity quantity;
