@@ -12,8 +12,11 @@
 //   defined for; no adjoint (light-to-camera) transport is done, so their non-reciprocity is never flipped.
 // - Surfaces are two-sided: the shading frame faces the incoming ray. Quads and disks emit on the side their
 //   normal points to, spheres outward.
-// - Deterministic: sample s of pixel p draws from PCG32 seeded by (scene seed, p) on stream s, and each pixel's
-//   samples are summed in order, so the image is bit-identical for any thread count.
+// - Sampling: Owen-scrambled Sobol points (sampling/owen.h), indexed by (pixel, sample index, dimension): the
+//   camera jitter is group 0 and vertex v uses group 2v - 1 for its light sample and group 2v for its BRDF
+//   sample and Russian roulette. Any sample of any pixel can be computed alone, so the image does not depend
+//   on the thread count (and a sample range or a tile can be rendered anywhere); each pixel's samples are
+//   summed in sample order.
 #pragma once
 
 #include <atomic>
@@ -22,6 +25,7 @@
 
 #include "shadelab/core/error.h"
 #include "shadelab/image/image.h"
+#include "shadelab/sampling/owen.h"
 #include "shadelab/scene/scene.h"
 
 namespace shadelab {
@@ -37,6 +41,7 @@ struct RenderOptions {
   int spp = -1;        // -1: the scene's
   int max_depth = -1;  // -1: the scene's
   int threads = -1;    // -1: the scene's (0 there: all cores)
+  SamplerKind sampler = SamplerKind::owen_sobol;
   bool aovs = false;   // albedo, normal and depth of the first hit
   std::function<void(double fraction, int spp_done)> progress;  // after each pass, on the calling thread
   const std::atomic<bool>* cancel = nullptr;  // checked between passes; the finished passes are kept
@@ -61,14 +66,16 @@ struct RenderResult {
 // Errors: a material whose model cannot take a texture's parameter, or an invalid setting.
 Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& options = {});
 
-// The radiance along one camera ray (for tests): `samples` independent paths averaged, and their standard
-// error, from the given seed.
+// The radiance along one camera ray (for tests): `samples` paths averaged, and their standard error, from the
+// given seed. The paths are 64 (or `samples`, if fewer) independent randomizations of the sampler (replicas,
+// each with its own pixel seed) of samples / 64 paths each; the standard error is that of the replicas' means,
+// which is honest for stratified samples (the per-path variance would overstate it).
 struct RadianceEstimate {
   Rgb mean;
   Rgb standard_error;
 };
 Result<RadianceEstimate> estimate_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, int samples,
                                            SamplingMode mode = SamplingMode::mis, int max_depth = -1,
-                                           std::uint64_t seed = 1);
+                                           std::uint64_t seed = 1, SamplerKind sampler = SamplerKind::owen_sobol);
 
 }  // namespace shadelab
