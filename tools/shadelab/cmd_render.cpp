@@ -37,6 +37,7 @@ struct RenderCliOptions {
   bool no_png = false;
   std::string mode = "reference";
   std::string sampling = "mis";
+  std::string sampler = "sobol";
   std::string ambient = "sh9";
   bool no_shadows = false;
   bool no_specular_ambient = false;
@@ -61,6 +62,9 @@ void run_render(const RenderCliOptions& o) {
   else if (o.sampling == "brdf") ro.mode = SamplingMode::brdf;
   else if (o.sampling == "light") ro.mode = SamplingMode::light;
   else throw UsageError("--sampling: '" + o.sampling + "' is not one of mis | brdf | light");
+  if (o.sampler == "sobol") ro.sampler = SamplerKind::owen_sobol;
+  else if (o.sampler == "independent") ro.sampler = SamplerKind::independent;
+  else throw UsageError("--sampler: '" + o.sampler + "' is not one of sobol | independent");
   if (o.mode != "reference" && o.mode != "game") throw UsageError("--mode: '" + o.mode + "' is not one of reference | game");
   GameOptions go;
   if (o.ambient == "sh9") go.diffuse = GameAmbient::sh9;
@@ -100,7 +104,7 @@ void run_render(const RenderCliOptions& o) {
     for (const auto& p : written) files.push_back(p.string());
     print_json({{"scene", scene.source}, {"mode", o.mode}, {"outputs", files}, {"width", scene.camera.width},
                 {"height", scene.camera.height}, {"spp", st.spp_done}, {"interrupted", st.cancelled},
-                {"seconds", st.seconds}, {"rays", st.rays},
+                {"seconds", st.seconds}, {"render_seconds", st.render_seconds}, {"rays", st.rays},
                 {"samples_per_second", pixels * st.spp_done / std::max(1e-9, st.seconds)},
                 {"rays_per_second", static_cast<double>(st.rays) / std::max(1e-9, st.seconds)}});
   } else {
@@ -132,6 +136,7 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_flag("--aov", o->aov, "also write albedo, normal and depth EXRs");
   sub->add_option("--mode", o->mode, "reference (the path tracer) or game (the game shading equation)")->capture_default_str();
   sub->add_option("--sampling", o->sampling, "reference mode: mis, brdf or light sampling")->capture_default_str();
+  sub->add_option("--sampler", o->sampler, "reference mode: sobol (Owen-scrambled, stratified) or independent (plain Monte Carlo)")->capture_default_str();
   sub->add_option("--ambient", o->ambient, "game mode: diffuse ambient from sh9, irradiance (cube map) or none")->capture_default_str();
   sub->add_flag("--no-shadows", o->no_shadows, "game mode: no shadow rays for punctual lights");
   sub->add_flag("--no-specular-ambient", o->no_specular_ambient, "game mode: no prefiltered specular");

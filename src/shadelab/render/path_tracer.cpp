@@ -457,6 +457,7 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   Integrator integrator(scene, options.mode, max_depth);
   auto ok = integrator.prepare();
   if (!ok) return ok.error();
+  const auto t_render = std::chrono::steady_clock::now();  // after the BVH build and the light tables
   const CameraModel camera(scene.camera);
   const int w = scene.camera.width;
   const int h = scene.camera.height;
@@ -535,6 +536,7 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
     done = s1;
     if (options.progress) options.progress(static_cast<double>(done) / spp, done);
   }
+  result.stats.render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_render).count();
   result.beauty = Image(w, h);
   if (options.aovs) {
     result.albedo = Image(w, h);

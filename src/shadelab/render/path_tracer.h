@@ -51,7 +51,8 @@ struct RenderStats {
   int spp_done = 0;
   std::uint64_t camera_rays = 0;
   std::uint64_t rays = 0;  // all rays traced: camera, bounce and shadow
-  double seconds = 0.0;
+  double seconds = 0.0;         // the whole call: preparation (BVH, light tables) and sampling
+  double render_seconds = 0.0;  // sampling only (what Cycles calls render time without synchronisation)
   bool cancelled = false;
 };
 

@@ -83,10 +83,19 @@ TEST(Sobol, TwoDimensionalProjectionsAreNets) {
       }
     }
   }
-  // The second dimension against the first points listed for this generator (Joe and Kuo's direction
-  // numbers; SciPy's scipy.stats.qmc.Sobol prints the same points in Gray-code order).
-  const double gray_order[8] = {0.0, 0.5, 0.25, 0.75, 0.375, 0.875, 0.125, 0.625};
-  for (std::uint32_t i = 0; i < 8; ++i) EXPECT_EQ(sobol_u32(i ^ (i >> 1u), 1) * 0x1.0p-32, gray_order[i]);
+}
+
+TEST(Sobol, FirstPointsMatchAnIndependentImplementation) {
+  // The first 8 points of dimensions 1..3 as SciPy's scipy.stats.qmc.Sobol(d=4, scramble=False) prints them
+  // (Joe and Kuo's direction numbers, generated in Gray-code order: point i there is point i ^ (i >> 1) here).
+  // Other valid direction numbers (m = (1, 1) for dimension 2, say) pass the net tests above but not this one.
+  const double scipy[8][3] = {{0.0, 0.0, 0.0},       {0.5, 0.5, 0.5},       {0.25, 0.25, 0.25},    {0.75, 0.75, 0.75},
+                              {0.375, 0.625, 0.875}, {0.875, 0.125, 0.375}, {0.125, 0.875, 0.625}, {0.625, 0.375, 0.125}};
+  for (std::uint32_t i = 0; i < 8; ++i) {
+    for (int d = 1; d < sobol_dimensions; ++d) {
+      EXPECT_EQ(sobol_u32(i ^ (i >> 1u), d) * 0x1.0p-32, scipy[i][d - 1]) << "point " << i << " dimension " << d;
+    }
+  }
 }
 
 }  // namespace
