@@ -45,6 +45,7 @@ struct LightSample {
 
 struct Counters {
   std::uint64_t rays = 0;
+  std::uint64_t nonfinite = 0;  // samples whose radiance is NaN or infinite
 };
 
 struct FirstHit {
@@ -448,12 +449,38 @@ struct CameraModel {
 
 }  // namespace
 
+Image image_from_sums(const std::vector<FixedRgb>& sums, int width, int height, std::uint64_t samples) {
+  Image image(width, height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      image.set(x, y, sums[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)].mean(samples));
+    }
+  }
+  return image;
+}
+
+std::pair<int, int> shard_sample_range(int spp, const ShardSpec& shard) {
+  if (shard.split == ShardSplit::tiles) return {0, spp};
+  const auto begin = static_cast<std::int64_t>(spp) * shard.index / shard.count;
+  const auto end = static_cast<std::int64_t>(spp) * (shard.index + 1) / shard.count;
+  return {static_cast<int>(begin), static_cast<int>(end)};
+}
+
+bool shard_owns_tile(int tile, const ShardSpec& shard) {
+  return shard.split == ShardSplit::samples || tile % shard.count == shard.index;
+}
+
 Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const int spp = options.spp > 0 ? options.spp : scene.settings.spp;
   const int max_depth = options.max_depth > 0 ? options.max_depth : scene.settings.max_depth;
   const int threads = options.threads >= 0 ? options.threads : scene.settings.threads;
   if (spp < 1) return make_error("render: samples per pixel must be >= 1");
+  const ShardSpec& shard = options.shard;
+  if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count) {
+    return make_error("render: shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) +
+                      " is not one of 0/N .. (N-1)/N");
+  }
   Integrator integrator(scene, options.mode, max_depth);
   auto ok = integrator.prepare();
   if (!ok) return ok.error();
@@ -462,33 +489,45 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   const int w = scene.camera.width;
   const int h = scene.camera.height;
   const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-  std::vector<Rgb> sum(pixels);
+  RenderResult result;
+  result.sums.assign(pixels, FixedRgb{});
   std::vector<Rgb> albedo_sum(options.aovs ? pixels : 0);
   std::vector<Vec3> normal_first(options.aovs ? pixels : 0);
   std::vector<double> depth_first(options.aovs ? pixels : 0, 0.0);
-  std::atomic<std::uint64_t> rays{0};
-  // Fixed 16 x 16 tiles in row-major order; each pixel's samples are summed in sample order.
-  constexpr int tile_size = 16;
+  std::atomic<std::uint64_t> rays{0}, nonfinite{0};
+  // Fixed 16 x 16 tiles in row-major order (the unit of the tile split).
+  constexpr int tile_size = render_tile_size;
   constexpr int packet = 8;
   static_assert(tile_size % packet == 0);
   const int tiles_x = (w + tile_size - 1) / tile_size;
   const int tiles_y = (h + tile_size - 1) / tile_size;
+  std::vector<int> tiles;
+  std::uint64_t covered = 0;  // pixels rendered
+  for (int t = 0; t < tiles_x * tiles_y; ++t) {
+    if (!shard_owns_tile(t, shard)) continue;
+    tiles.push_back(t);
+    const int x0 = (t % tiles_x) * tile_size, y0 = (t / tiles_x) * tile_size;
+    covered += static_cast<std::uint64_t>(std::min(w, x0 + tile_size) - x0) * static_cast<std::uint64_t>(std::min(h, y0 + tile_size) - y0);
+  }
+  const auto [first_sample, end_sample] = shard_sample_range(spp, shard);
+  result.sample_begin = first_sample;
+  const int samples = end_sample - first_sample;
   // Passes of up to 8 samples: Ctrl-C and progress react within one pass.
-  const int per_pass = std::clamp(spp / 32, 1, 8);
-  RenderResult result;
+  const int per_pass = std::clamp(samples / 32, 1, 8);
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  int done = 0;
-  while (done < spp) {
-    if (options.cancel != nullptr && options.cancel->load() && done > 0) {
+  int done = first_sample;
+  while (done < end_sample) {
+    if (options.cancel != nullptr && options.cancel->load() && done > first_sample) {
       result.stats.cancelled = true;
       break;
     }
     const int s0 = done;
-    const int s1 = std::min(spp, done + per_pass);
+    const int s1 = std::min(end_sample, done + per_pass);
     arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& r) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size()), [&](const tbb::blocked_range<std::size_t>& r) {
         Counters counters;
-        for (int tile = r.begin(); tile != r.end(); ++tile) {
+        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+          const int tile = tiles[k];
           const int x0 = (tile % tiles_x) * tile_size;
           const int y0 = (tile / tiles_x) * tile_size;
           const int x1 = std::min(w, x0 + tile_size);
@@ -500,7 +539,6 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
               const int n = std::min(packet, x1 - xp);
               const std::size_t p0 = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(xp);
               std::uint64_t pixel_seed[packet];
-              Rgb acc[packet];
               for (int i = 0; i < n; ++i) pixel_seed[i] = mix64(scene.settings.seed ^ mix64(p0 + static_cast<std::size_t>(i)));
               for (int s = s0; s < s1; ++s) {
                 Ray camera_rays[packet];
@@ -516,7 +554,8 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
                   const std::size_t pi_ = p0 + static_cast<std::size_t>(i);
                   const PixelSampler sampler(pixel_seed[i], static_cast<std::uint32_t>(s), options.sampler);
                   FirstHit first;
-                  acc[i] += integrator.li(camera_rays[i], found[i], hits[i], sampler, counters, options.aovs ? &first : nullptr);
+                  const Rgb l = integrator.li(camera_rays[i], found[i], hits[i], sampler, counters, options.aovs ? &first : nullptr);
+                  if (!result.sums[pi_].add(l)) ++counters.nonfinite;
                   if (options.aovs) {
                     albedo_sum[pi_] += first.albedo;
                     if (s == 0) {
@@ -526,37 +565,37 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
                   }
                 }
               }
-              for (int i = 0; i < n; ++i) sum[p0 + static_cast<std::size_t>(i)] += acc[i];
             }
           }
         }
         rays.fetch_add(counters.rays, std::memory_order_relaxed);
+        nonfinite.fetch_add(counters.nonfinite, std::memory_order_relaxed);
       });
     });
     done = s1;
-    if (options.progress) options.progress(static_cast<double>(done) / spp, done);
+    if (options.progress) options.progress(static_cast<double>(done - first_sample) / std::max(1, samples), done - first_sample);
   }
+  result.sample_end = done;
   result.stats.render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_render).count();
-  result.beauty = Image(w, h);
+  const auto rendered = static_cast<std::uint64_t>(done - first_sample);
+  result.beauty = image_from_sums(result.sums, w, h, rendered);
   if (options.aovs) {
     result.albedo = Image(w, h);
     result.normal = Image(w, h);
     result.depth = Image(w, h);
-  }
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
-      result.beauty.set(x, y, sum[i] / done);
-      if (options.aovs) {
-        result.albedo.set(x, y, albedo_sum[i] / done);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+        result.albedo.set(x, y, rendered > 0 ? albedo_sum[i] / static_cast<double>(rendered) : Rgb{});
         result.normal.set(x, y, {normal_first[i].x, normal_first[i].y, normal_first[i].z});
         result.depth.set(x, y, Rgb::gray(depth_first[i]));
       }
     }
   }
-  result.stats.spp_done = done;
-  result.stats.camera_rays = static_cast<std::uint64_t>(done) * pixels;
+  result.stats.spp_done = static_cast<int>(rendered);
+  result.stats.camera_rays = rendered * covered;
   result.stats.rays = rays.load();
+  result.stats.nonfinite_samples = nonfinite.load();
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }

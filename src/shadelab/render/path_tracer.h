@@ -16,19 +16,39 @@
 //   camera jitter is group 0 and vertex v uses group 2v - 1 for its light sample and group 2v for its BRDF
 //   sample and Russian roulette. Any sample of any pixel can be computed alone, so the image does not depend
 //   on the thread count (and a sample range or a tile can be rendered anywhere); each pixel's samples are
-//   summed in sample order.
+//   summed exactly (fixed_sum.h), so the sum does not depend on the grouping of samples either: a render split
+//   into shards and merged gives the same bits as one render.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <utility>
+#include <vector>
 
 #include "shadelab/core/error.h"
 #include "shadelab/image/image.h"
+#include "shadelab/render/fixed_sum.h"
 #include "shadelab/sampling/owen.h"
 #include "shadelab/scene/scene.h"
 
 namespace shadelab {
+
+// A part of a render for scale-out (docs/scale-out.md): shard `index` of `count`, split by samples (every
+// pixel, the sample indices [spp index / count, spp (index + 1) / count)) or by tiles (every sample of the
+// 16 x 16 tiles t, numbered row-major, with t % count == index). count 1 is the whole render.
+enum class ShardSplit { samples, tiles };
+struct ShardSpec {
+  int index = 0;
+  int count = 1;
+  ShardSplit split = ShardSplit::samples;
+};
+inline constexpr int render_tile_size = 16;
+
+// The sample indices [first, second) shard `shard` renders of every pixel it covers.
+std::pair<int, int> shard_sample_range(int spp, const ShardSpec& shard);
+// Whether shard `shard` renders tile `tile` (row-major index of the 16 x 16 tiles).
+bool shard_owns_tile(int tile, const ShardSpec& shard);
 
 enum class SamplingMode {
   mis,    // BRDF sampling and light sampling combined with the power heuristic
@@ -42,6 +62,7 @@ struct RenderOptions {
   int max_depth = -1;  // -1: the scene's
   int threads = -1;    // -1: the scene's (0 there: all cores)
   SamplerKind sampler = SamplerKind::owen_sobol;
+  ShardSpec shard;     // the whole render by default
   bool aovs = false;   // albedo, normal and depth of the first hit
   std::function<void(double fraction, int spp_done)> progress;  // after each pass, on the calling thread
   const std::atomic<bool>* cancel = nullptr;  // checked between passes; the finished passes are kept
@@ -54,15 +75,25 @@ struct RenderStats {
   double seconds = 0.0;         // the whole call: preparation (BVH, light tables) and sampling
   double render_seconds = 0.0;  // sampling only (what Cycles calls render time without synchronisation)
   bool cancelled = false;
+  // Samples whose radiance was NaN or infinite: they add nothing to the exact sums (fixed_sum.h).
+  std::uint64_t nonfinite_samples = 0;
 };
 
 struct RenderResult {
+  // Exact per-pixel sums of the samples rendered (row-major; zero for pixels a tile shard does not cover):
+  // beauty = sums / samples. What a shard writes and `shadelab merge` adds.
+  std::vector<FixedRgb> sums;
+  int sample_begin = 0, sample_end = 0;  // the sample indices rendered of every covered pixel
   Image beauty;  // linear radiance, W m^-2 sr^-1
   Image albedo;  // first-hit directional albedo (one-sample estimates averaged), if aovs
   Image normal;  // first-hit shading normal, world space, components in [-1, 1], if aovs
   Image depth;   // first-hit distance along the camera ray (0 where nothing is hit), if aovs
   RenderStats stats;
 };
+
+// The image of exact per-pixel sums (row-major): sums / samples, then rounded to float. render_scene and the
+// shard merge both produce their images with it.
+Image image_from_sums(const std::vector<FixedRgb>& sums, int width, int height, std::uint64_t samples);
 
 // Errors: a material whose model cannot take a texture's parameter, or an invalid setting.
 Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& options = {});
