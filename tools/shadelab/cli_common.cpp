@@ -2,8 +2,12 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <iostream>
+
+#include "shadelab/core/text.h"
 
 namespace shadelab::cli {
 
@@ -29,7 +33,94 @@ BrdfPtr build_brdf(const std::string& model, const std::vector<std::string>& par
 
 nlohmann::json to_json(const Rgb& c) { return nlohmann::json::array({c.r, c.g, c.b}); }
 
-void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << "\n"; }
+void print_json(const nlohmann::json& j) {
+  std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path real_path(const fs::path& p) {
+  std::error_code ec;
+  fs::path r = fs::weakly_canonical(fs::absolute(p, ec), ec);
+  return ec ? fs::absolute(p).lexically_normal() : r;
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  if (real_path(a) == real_path(b)) return true;
+  std::error_code ec;
+  return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec) && !ec;
+}
+
+std::string lower_ext(const fs::path& p) {
+  std::string e = p.extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return e;
+}
+
+}  // namespace
+
+void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const NamedPath& out = outputs[i];
+    if (out.path.empty()) continue;
+    for (const NamedPath& in : inputs) {
+      if (!in.path.empty() && same_file(out.path, in.path)) {
+        throw UsageError(out.option + ": '" + out.path.string() + "' is the input " + in.option + " ('" +
+                         in.path.string() + "'); refusing to overwrite it");
+      }
+    }
+    for (std::size_t k = 0; k < i; ++k) {
+      if (!outputs[k].path.empty() && same_file(out.path, outputs[k].path)) {
+        throw UsageError(out.option + ": '" + out.path.string() + "' is also the output of " + outputs[k].option +
+                         "; give each output its own file");
+      }
+    }
+  }
+}
+
+void require_extension(const std::string& option, const fs::path& path, const std::vector<std::string>& allowed,
+                       const std::string& what) {
+  const std::string ext = lower_ext(path);
+  if (std::find(allowed.begin(), allowed.end(), ext) != allowed.end()) return;
+  std::string list;
+  for (const auto& a : allowed) list += (list.empty() ? "" : " or ") + a;
+  throw UsageError(option + ": " + what + " must be written to a " + list + " file, got '" + path.string() + "'");
+}
+
+std::vector<NamedPath> scene_inputs(const Scene& scene) {
+  std::vector<NamedPath> in;
+  std::error_code ec;
+  if (fs::exists(scene.source, ec)) in.push_back({"SCENE", scene.source});
+  for (const Texture& t : scene.textures) {
+    if (t.source.rfind("procedural ", 0) != 0) in.push_back({"the scene's texture '" + t.name + "'", t.source});
+  }
+  if (scene.environment.kind == Environment::Kind::image) {
+    in.push_back({"the scene's environment", scene.environment.source});
+  }
+  for (const MeshShape& m : scene.meshes) in.push_back({"the scene's mesh", m.source});
+  return in;
+}
+
+void check_range(const std::string& option, bool given, long long value, long long lo, long long hi) {
+  if (given && (value < lo || value > hi)) {
+    throw UsageError(option + ": " + std::to_string(value) + " is out of range [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "]");
+  }
+}
+
+std::uint64_t parse_seed(const std::string& option, const std::string& text) {
+  std::uint64_t v = 0;
+  const char* end = text.data() + text.size();
+  const auto [p, ec] = std::from_chars(text.data(), end, v);
+  if (text.empty() || ec != std::errc() || p != end) {
+    throw UsageError(option + ": '" + text + "' is not an integer in [0, 18446744073709551615]");
+  }
+  return v;
+}
+
+void warn(const std::string& message) { std::cerr << "shadelab: warning: " << printable_message(message) << "\n"; }
 
 std::vector<CommandEntry>& command_registry() {
   static std::vector<CommandEntry> entries;

@@ -5,14 +5,18 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shadelab/brdf/registry.h"
 #include "shadelab/color/rgb.h"
 #include "shadelab/core/error.h"
 #include "shadelab/core/vec.h"
+#include "shadelab/scene/scene.h"
 
 namespace shadelab::cli {
 
@@ -38,8 +42,35 @@ BrdfPtr build_brdf(const std::string& model, const std::vector<std::string>& par
 
 nlohmann::json to_json(const Rgb& c);
 
-// Writes JSON to stdout, indented, with a final newline.
+// Writes JSON to stdout, indented, with a final newline. Strings that are not UTF-8 (file names) have
+// their bad bytes replaced by U+FFFD rather than failing the dump.
 void print_json(const nlohmann::json& j);
+
+// A file a command reads or writes, and the option or argument that names it (for messages).
+struct NamedPath {
+  std::string option;
+  std::filesystem::path path;
+};
+
+// Refuses (UsageError, exit 2) an output that is one of the inputs or another output of the same command.
+// Paths are compared as real paths: symbolic links and ".." resolved, hard links of existing files found.
+void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
+
+// Refuses a path whose extension (case-insensitive) is not one of `allowed` (".png", ...).
+void require_extension(const std::string& option, const std::filesystem::path& path,
+                       const std::vector<std::string>& allowed, const std::string& what);
+
+// The files a loaded scene read: the scene file, file textures, the environment map, mesh files.
+std::vector<NamedPath> scene_inputs(const Scene& scene);
+
+// A count option: when `given`, `value` must lie in [lo, hi]; the message names the option.
+void check_range(const std::string& option, bool given, long long value, long long lo, long long hi);
+
+// A seed: a decimal integer in [0, 2^64 - 1], nothing else (no sign, no wrap-around, no saturation).
+std::uint64_t parse_seed(const std::string& option, const std::string& text);
+
+// A warning line on stderr ("shadelab: warning: ..."), printable and bounded like an error.
+void warn(const std::string& message);
 
 // Commands register themselves on the app and store the action to run after parsing.
 struct Command {

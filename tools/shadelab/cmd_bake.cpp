@@ -1,7 +1,12 @@
 // shadelab bake irradiance|sh|specular|convert INPUT [--out FILE] [--size N] [--units game|radiometric]
 // [--json]: environment lighting baked the way engines load it.
+//
+// An option that a subcommand does not use is refused (exit 2) rather than ignored; an output that is the
+// input, or another output of the same command, is refused; a KTX output says how many values it clamped
+// to the half-float range.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -35,7 +40,24 @@ struct BakeOptions {
   bool exr_faces = true;
   bool json = false;
   bool progress = false;
+  std::vector<std::string> lights;         // sh: DIR[:COLOUR], game colour
+  std::string light_normalization = "d3dx";  // sh: d3dx (16/17) or delta
+  std::vector<std::string> given;          // the options given on the command line (set after parsing)
+  bool has(const std::string& option) const { return std::find(given.begin(), given.end(), option) != given.end(); }
 };
+
+// Refuses each option of `options` that was given: it does not apply to `command`.
+void refuse_options(const BakeOptions& o, const std::string& command, std::initializer_list<const char*> options,
+                    const std::string& why) {
+  for (const char* option : options) {
+    if (o.has(option)) throw UsageError(std::string(option) + " does not apply to bake " + command + " (" + why + ")");
+  }
+}
+
+// Refuses outputs that are the input or each other (real paths).
+void check_bake_outputs(const BakeOptions& o, const std::vector<NamedPath>& outputs) {
+  check_outputs({{"INPUT", o.input}}, outputs);
+}
 
 std::string lower(std::string s) {
   for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -43,6 +65,9 @@ std::string lower(std::string s) {
 }
 
 bool is_power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
+
+// log2 of the largest (and of 1 / the smallest) prefiltered Phong exponent: 2^20, about the BRDF models' 1e6.
+constexpr double max_gloss_log2 = 20.0;
 
 void check_size(const std::string& option, int size, int max) {
   if (size < 1 || size > max) throw UsageError(fmt::format("{}: {} is out of range [1, {}]", option, size, max));
@@ -54,13 +79,12 @@ CubeMap load_environment(const BakeOptions& o) {
   ReadInfo info;
   Image img = unwrap(read_image(o.input, &info));
   if (info.nonfinite_repaired > 0) {
-    std::cerr << "shadelab: warning: " << o.input << ": " << info.nonfinite_repaired
-              << " NaN/Inf values replaced by 0\n";
+    warn(o.input + ": " + std::to_string(info.nonfinite_repaired) + " NaN/Inf values replaced by 0");
   }
   if (img.width == 2 * img.height) {
     int size = o.input_size;
-    if (size != -1) check_size("--input-size", size, 2048);
-    if (size == -1) {  // about the lat-long's resolution: a face spans a quarter of its width
+    if (o.has("--input-size")) check_size("--input-size", size, 2048);
+    if (!o.has("--input-size")) {  // about the lat-long's resolution: a face spans a quarter of its width
       size = 1;
       while (size * 2 <= std::min(512, img.width / 4)) size *= 2;
     }
@@ -82,11 +106,34 @@ fs::path default_out(const BakeOptions& o, const std::string& suffix) {
   return in.parent_path() / (in.stem().string() + suffix);
 }
 
-void write_cube(const CubeMap& cube, const fs::path& path, const std::string& layout) {
+// Says on stderr how many values a KTX (RGBA16F) output clamped to +-65504 (ktx.h).
+void report_clamped(const fs::path& path, const KtxEncodeInfo& info) {
+  if (info.clamped_values > 0) {
+    warn(path.string() + ": " + std::to_string(info.clamped_values) +
+         " values beyond the half-float range were clamped to +-65504 (RGBA16F)");
+  }
+}
+
+bool is_ktx(const fs::path& path) { return lower(path.extension().string()) == ".ktx"; }
+
+// The --layout applies to image outputs only; a .ktx output stores the six faces.
+void check_layout(const BakeOptions& o, const fs::path& out) {
+  if (is_ktx(out) && o.has("--layout")) {
+    throw UsageError("--layout does not apply to a .ktx output ('" + out.string() + "' stores the six faces as a cube map)");
+  }
+  if (o.layout != "hcross" && o.layout != "vcross" && o.layout != "latlong") {
+    throw UsageError("--layout: '" + o.layout + "' is not one of hcross | vcross | latlong");
+  }
+  if (!is_ktx(out)) require_extension("--out", out, {".exr", ".hdr", ".pic", ".png", ".ktx"}, "the cube map");
+}
+
+std::uint64_t write_cube(const CubeMap& cube, const fs::path& path, const std::string& layout) {
   const std::string ext = lower(path.extension().string());
   if (ext == ".ktx") {
-    unwrap(write_ktx_cubemap({cube}, path));
-    return;
+    KtxEncodeInfo info;
+    unwrap(write_ktx_cubemap({cube}, path, KtxPixelType::half, &info));
+    report_clamped(path, info);
+    return info.clamped_values;
   }
   Image img;
   if (layout == "hcross") {
@@ -99,6 +146,7 @@ void write_cube(const CubeMap& cube, const fs::path& path, const std::string& la
     throw UsageError("--layout: '" + layout + "' is not one of hcross | vcross | latlong");
   }
   unwrap(write_image(img, path));
+  return 0;
 }
 
 
@@ -108,19 +156,21 @@ double elapsed_since(std::chrono::steady_clock::time_point t0) {
 
 void run_irradiance(const BakeOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  const int size = o.size == -1 ? 32 : o.size;
+  const int size = o.has("--size") ? o.size : 32;
   check_size("--size", size, 1024);
   const RadianceUnits units = parse_units(o.units);
   const fs::path out = o.out.empty() ? default_out(o, "_irradiance.exr") : fs::path(o.out);
+  check_layout(o, out);
+  check_bake_outputs(o, {{"--out", out}});
   const CubeMap env = load_environment(o);
   ProgressBar bar("irradiance", o.progress);
   ConvolveOptions opts;
   opts.progress = [&](double f) { bar.update(f); };
   const CubeMap e = irradiance_cube(env, size, units, opts);
   bar.finish();
-  write_cube(e, out, o.layout);
+  const std::uint64_t clamped = write_cube(e, out, o.layout);
   if (o.json) {
-    print_json({{"output", out.string()}, {"size", size}, {"units", o.units},
+    print_json({{"output", out.string()}, {"size", size}, {"units", o.units}, {"clamped_values", clamped},
                 {"convention", units == RadianceUnits::game ? "E/pi: exit radiance of a white Lambert surface"
                                                             : "E: irradiance, W/m^2 per unit of input radiance"},
                 {"seconds", elapsed_since(t0)}});
@@ -136,11 +186,59 @@ ShWindow parse_window(const std::string& w) {
   throw UsageError("--window: '" + w + "' is not one of none | hanning | lanczos");
 }
 
+// --light DIR[:COLOUR]: a directional light toward DIR (x,y,z, normalized) of game colour COLOUR (a number or
+// r,g,b, default 1), so its irradiance facing it is pi x COLOUR per unit of the environment's radiance.
+struct ShLight {
+  Vec3 to_light;
+  Rgb colour;
+};
+
+ShLight parse_sh_light(const std::string& text) {
+  const auto colon = text.find(':');
+  ShLight l;
+  l.to_light = parse_direction("--light", text.substr(0, colon));
+  l.colour = Rgb::gray(1.0);
+  if (colon != std::string::npos) {
+    auto nums = parse_numbers(text.substr(colon + 1));
+    if (!nums || (nums->size() != 1 && nums->size() != 3)) {
+      throw UsageError("--light: expected DIR[:COLOUR] with COLOUR a number or r,g,b, got '" + text + "'");
+    }
+    const std::vector<double>& v = *nums;
+    l.colour = v.size() == 1 ? Rgb::gray(v[0]) : Rgb{v[0], v[1], v[2]};
+    for (double c : v) {
+      if (!std::isfinite(c) || c < 0.0 || c > 1e30) {
+        throw UsageError("--light: colour values must be finite, >= 0 and <= 1e30, got '" + text + "'");
+      }
+    }
+  }
+  return l;
+}
+
 void run_sh(const BakeOptions& o) {
+  refuse_options(o, "sh", {"--size", "--layout"}, "it writes nine coefficients, not a cube map");
   const RadianceUnits units = parse_units(o.units);
   const ShWindow window = parse_window(o.window);
+  if (o.light_normalization != "d3dx" && o.light_normalization != "delta") {
+    throw UsageError("--light-normalization: '" + o.light_normalization + "' is not one of d3dx | delta");
+  }
+  if (o.has("--light-normalization") && o.lights.empty()) {
+    throw UsageError("--light-normalization applies to --light, and no --light was given");
+  }
+  std::vector<ShLight> lights;
+  for (const auto& text : o.lights) lights.push_back(parse_sh_light(text));
+  if (!o.out.empty()) {
+    require_extension("--out", o.out, {".json"}, "the SH9 coefficients (JSON)");
+    check_bake_outputs(o, {{"--out", o.out}});
+  }
   const CubeMap env = load_environment(o);
-  const Sh9 sh = project_sh9(env);
+  Sh9 sh = project_sh9(env);
+  // D3DX-style punctual lights (sh.h): each adds the projection of pi c delta(w - d), scaled by 16/17 with
+  // d3dx normalization so that the game irradiance facing a light of colour c is exactly c.
+  nlohmann::json lights_json = nlohmann::json::array();
+  for (const ShLight& l : lights) {
+    sh += sh9_directional_light(l.to_light, l.colour, o.light_normalization == "d3dx");
+    lights_json.push_back({{"direction", {l.to_light.x, l.to_light.y, l.to_light.z}}, {"color", to_json(l.colour)}});
+  }
   const BandFactors w = sh_window_factors(window);
   const BandFactors& base = units == RadianceUnits::game ? cosine_band_factors_over_pi : cosine_band_factors;
   const BandFactors factors = {w[0] * base[0], w[1] * base[1], w[2] * base[2]};
@@ -162,6 +260,8 @@ void run_sh(const BakeOptions& o) {
                          : "irradiance_coefficients give E = sum_i c_i Y_i(n) in W/m^2 per unit of radiance"},
       {"band_factors", factors},
       {"window", o.window},
+      {"lights", lights_json},
+      {"light_normalization", o.light_normalization},
       {"radiance_coefficients", radiance},
       {"irradiance_coefficients", irradiance}};
   if (!o.out.empty()) {
@@ -183,10 +283,34 @@ void run_sh(const BakeOptions& o) {
 
 void run_specular(const BakeOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  const int size = o.size == -1 ? 128 : o.size;
+  refuse_options(o, "specular", {"--layout"}, "it writes a KTX mip chain and EXR faces");
+  refuse_options(o, "specular", {"--units"}, "prefiltered radiance has no game or radiometric convention");
+  const int size = o.has("--size") ? o.size : 128;
   if (!is_power_of_two(size) || size > 2048) throw UsageError(fmt::format("--size: {} is not a power of two in [1, 2048]", size));
   const fs::path out = o.out.empty() ? default_out(o, "_specular.ktx") : fs::path(o.out);
   if (lower(out.extension().string()) != ".ktx") throw UsageError("--out: the specular chain is written as .ktx, got '" + out.string() + "'");
+  if (o.mips < 0 || o.mips > 32) throw UsageError(fmt::format("--mips: {} is out of range [0, 32]", o.mips));
+  // Every level's exponent 2^(scale (1 - i/(M-1)) + bias) lies between 2^bias and 2^(scale + bias).
+  if (!std::isfinite(o.gloss_scale) || o.gloss_scale < 0.0 || !std::isfinite(o.gloss_bias) ||
+      o.gloss_bias < -max_gloss_log2 || o.gloss_scale + o.gloss_bias > max_gloss_log2) {
+    throw UsageError(fmt::format("--gloss-scale {} / --gloss-bias {}: the level exponents 2^bias .. 2^(scale + bias) "
+                                 "must lie in [2^-{}, 2^{}] with scale >= 0",
+                                 o.gloss_scale, o.gloss_bias, max_gloss_log2, max_gloss_log2));
+  }
+  const std::vector<NamedPath> planned = [&] {
+    std::vector<NamedPath> v{{"--out", out}};
+    if (o.exr_faces) {
+      const int levels = o.mips > 0 ? o.mips : static_cast<int>(std::log2(size)) + 1;
+      static const char* face_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
+      for (int m = 0; m < levels; ++m) {
+        for (const char* f : face_names) {
+          v.push_back({"the EXR face", out.parent_path() / fmt::format("{}_m{}_{}.exr", out.stem().string(), m, f)});
+        }
+      }
+    }
+    return v;
+  }();
+  check_bake_outputs(o, planned);
   const CubeMap env = load_environment(o);
   PrefilterOptions p;
   p.size = size;
@@ -198,7 +322,9 @@ void run_specular(const BakeOptions& o) {
   auto chain = prefilter_specular(env, p);
   bar.finish();
   if (!chain) throw UsageError(chain.error().message);
-  unwrap(write_ktx_cubemap(chain->levels, out));
+  KtxEncodeInfo ktx_info;
+  unwrap(write_ktx_cubemap(chain->levels, out, KtxPixelType::half, &ktx_info));
+  report_clamped(out, ktx_info);
   std::vector<std::string> faces;
   if (o.exr_faces) {
     static const char* face_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
@@ -213,7 +339,8 @@ void run_specular(const BakeOptions& o) {
   if (o.json) {
     print_json({{"output", out.string()}, {"exr_faces", faces}, {"size", size},
                 {"exponents", chain->exponents}, {"gloss_scale", o.gloss_scale}, {"gloss_bias", o.gloss_bias},
-                {"lobe", "normalized Phong (n+1)/(2pi) (R.L)^n"}, {"seconds", elapsed_since(t0)}});
+                {"lobe", "normalized Phong (n+1)/(2pi) (R.L)^n"}, {"clamped_values", ktx_info.clamped_values},
+                {"seconds", elapsed_since(t0)}});
   } else {
     fmt::print("wrote {} ({} levels, Phong exponents {:.4g} .. {:.4g}) and {} EXR faces\n", out.string(),
                chain->levels.size(), chain->exponents.front(), chain->exponents.back(), faces.size());
@@ -222,17 +349,22 @@ void run_specular(const BakeOptions& o) {
 
 void run_convert(const BakeOptions& o) {
   if (o.out.empty()) throw UsageError("convert: --out FILE is required");
+  refuse_options(o, "convert", {"--units"}, "conversion changes no values");
+  check_layout(o, o.out);
+  check_bake_outputs(o, {{"--out", o.out}});
   CubeMap env = load_environment(o);
-  if (o.size != -1) {
+  if (o.has("--size")) {
     check_size("--size", o.size, 4096);
     // Resample through the lat-long form with area filtering when the size changes.
     if (o.size != env.size) env = latlong_to_cube(cube_to_latlong(env, 4 * std::max(env.size, o.size)), o.size);
   }
-  write_cube(env, o.out, o.layout);
+  const std::uint64_t clamped = write_cube(env, o.out, o.layout);
+  const std::string layout = is_ktx(o.out) ? "ktx" : o.layout;
   if (o.json) {
-    print_json({{"output", o.out}, {"size", env.size}, {"layout", o.layout}});
+    print_json({{"output", o.out}, {"size", env.size}, {"layout", layout}, {"clamped_values", clamped}});
   } else {
-    fmt::print("wrote {} ({} x {} faces as {})\n", o.out, env.size, env.size, o.layout);
+    fmt::print("wrote {} ({} x {} faces as {})\n", o.out, env.size, env.size,
+               is_ktx(o.out) ? std::string("a KTX cube map") : o.layout);
   }
 }
 
@@ -256,6 +388,13 @@ void add_bake_command(CLI::App& app, Command& command) {
     sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");
     if (std::string(name) == "sh") {
       sub->add_option("--window", o->window, "ringing window: none, hanning or lanczos")->capture_default_str();
+      sub->add_option("--light", o->lights,
+                      "add a directional light to the coefficients: DIR[:COLOUR], toward x,y,z, game colour (a number "
+                      "or r,g,b; default 1); repeatable");
+      sub->add_option("--light-normalization", o->light_normalization,
+                      "d3dx: scaled by 16/17 so a light of colour c gives exactly c facing it (D3DXSHEvalDirectionalLight); "
+                      "delta: the plain projection of the delta")
+          ->capture_default_str();
     }
     if (std::string(name) == "specular") {
       sub->add_option("--mips", o->mips, "number of mip levels (default: down to 1 x 1)");
@@ -263,7 +402,13 @@ void add_bake_command(CLI::App& app, Command& command) {
       sub->add_option("--gloss-bias", o->gloss_bias, "see --gloss-scale")->capture_default_str();
       sub->add_flag("!--no-exr-faces", o->exr_faces, "do not write the per-level EXR faces");
     }
-    sub->callback([o, run, &command] { command.run = [o, run] { run(*o); }; });
+    sub->callback([o, run, sub, &command] {
+      o->given.clear();
+      for (const CLI::Option* opt : sub->get_options()) {
+        if (opt->count() > 0) o->given.push_back(opt->get_name());
+      }
+      command.run = [o, run] { run(*o); };
+    });
   };
   add("irradiance", "cosine-convolved irradiance cube map (brute force)", run_irradiance);
   add("sh", "nine RGB spherical-harmonic coefficients and their convention", run_sh);

@@ -67,6 +67,7 @@ void run_compare(const CompareCliOptions& o) {
   else throw UsageError("--heatmap-metric: '" + o.metric + "' is not one of absolute | relative");
   check_png_output("--heatmap", o.heatmap);
   check_png_output("--side-by-side", o.side_by_side);
+  check_outputs({{"A", o.a}, {"B", o.b}}, {{"--heatmap", o.heatmap}, {"--side-by-side", o.side_by_side}});
 
   ReadInfo info_a;
   ReadInfo info_b;
@@ -91,8 +92,7 @@ void run_compare(const CompareCliOptions& o) {
   unwrap(check_comparable(a, b, co));
   for (const auto& [path, info] : {std::pair{o.a, info_a}, std::pair{o.b, info_b}}) {
     if (info.nonfinite_repaired > 0) {
-      std::cerr << "shadelab: warning: " << quoted(path) << ": " << info.nonfinite_repaired
-                << " NaN/Inf values replaced by 0\n";
+      warn(quoted(path) + ": " + std::to_string(info.nonfinite_repaired) + " NaN/Inf values replaced by 0");
     }
   }
 

@@ -1,4 +1,9 @@
 // shadelab light VALUE --from UNIT --to UNIT [--cone DEG] [--json]: light unit conversions.
+//
+// An r,g,b VALUE is converted per channel (each channel alone, as scene files and engines store colours).
+// A photometric quantity of an RGB light is not a vector: it is 683 x the Rec.709 luminance Y of the
+// radiometric vector (illuminance in lux, luminous intensity in cd, luminance in nit; light/units.h). So the
+// command also prints the luminance Y of the converted vector and that photometric value, named.
 #include <fmt/core.h>
 
 #include <cmath>
@@ -52,12 +57,28 @@ void run_light(const LightOptions& o) {
   // --cone is the half-angle of the outer cone; 180 degrees is the whole sphere, a point light.
   const double cos_outer = std::cos(deg_to_rad(o.cone_deg));
   const Rgb out = unwrap(convert_light(in, o.from, o.to, std::max(-1.0, cos_outer)));
+  // The photometric unit of the quantity, and the value of the light in it: 683 Y of the radiometric vector.
+  const LightQuantity quantity = find_light_unit(o.from)->quantity;
+  const char* photometric_unit = quantity == LightQuantity::irradiance ? "lux" : quantity == LightQuantity::intensity ? "cd" : "nit";
+  const char* photometric_name = quantity == LightQuantity::irradiance   ? "illuminance"
+                                 : quantity == LightQuantity::intensity ? "luminous intensity"
+                                                                        : "luminance";
+  const double photometric = luminance(unwrap(convert_light(in, o.from, photometric_unit, std::max(-1.0, cos_outer))));
+  const double y = luminance(out);
   if (o.json) {
-    print_json({{"value", to_json(out)}, {"unit", o.to}, {"from", {{"value", to_json(in)}, {"unit", o.from}}}});
+    print_json({{"value", to_json(out)}, {"unit", o.to}, {"from", {{"value", to_json(in)}, {"unit", o.from}}},
+                {"per_channel", true},
+                {"luminance", y},
+                {"luminance_note", "Rec.709 Y = 0.2126 R + 0.7152 G + 0.0722 B of value, in unit"},
+                {"photometric", {{"quantity", photometric_name}, {"value", photometric}, {"unit", photometric_unit},
+                                 {"note", "683 x Y of the radiometric vector"}}}});
   } else if (nums->size() == 1) {
     fmt::print("{} {} = {:.10g} {}\n", in.r, o.from, out.r, o.to);
   } else {
-    fmt::print("{},{},{} {} = {:.10g},{:.10g},{:.10g} {}\n", in.r, in.g, in.b, o.from, out.r, out.g, out.b, o.to);
+    fmt::print("{},{},{} {} = {:.10g},{:.10g},{:.10g} {} (per channel: each channel converted alone)\n", in.r, in.g, in.b,
+               o.from, out.r, out.g, out.b, o.to);
+    fmt::print("luminance Y (Rec.709) of that vector: {:.10g} {}; the light's {}: {:.10g} {} (683 lm/W x the Y of the radiometric vector)\n", y,
+               o.to, photometric_name, photometric, photometric_unit);
   }
 }
 }  // namespace

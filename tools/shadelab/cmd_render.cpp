@@ -1,18 +1,26 @@
 // shadelab render [SCENE] [--out FILE.exr] [--png FILE.png] ...: the reference path tracer.
-// Without SCENE it renders the built-in default scene. Ctrl-C stops after the current pass and writes the
-// image accumulated so far (exit code 130).
+// Without SCENE it renders the built-in default scene. Ctrl-C (or SIGTERM) stops after the current pass and
+// writes the image accumulated so far (exit code 130, 143 for SIGTERM); the handler stays installed through
+// the write, so a signal then still ends in complete files. A render with NaN or infinite samples says so on
+// stderr and in --json ("nonfinite_samples") and exits with 1. With --shard I/N [--split samples|tiles] it
+// renders one part for `shadelab merge` (cmd_merge.cpp, docs/scale-out.md) and skips a part already done.
 #include <fmt/core.h>
 
 #include <atomic>
 #include <csignal>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
 
 #include "cli_common.h"
 #include "progress.h"
 #include "shadelab/render/film.h"
 #include "shadelab/render/game_renderer.h"
 #include "shadelab/render/path_tracer.h"
+#include "shadelab/render/shard_file.h"
+#include "shadelab/render/threads.h"
 #include "shadelab/scene/default_scene.h"
 #include "shadelab/scene/scene_json.h"
 
@@ -21,7 +29,27 @@ namespace shadelab::cli {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
-extern "C" void on_interrupt(int) { g_interrupted.store(true); }
+std::atomic<int> g_signal{0};
+extern "C" void on_interrupt(int sig) {
+  g_signal.store(sig);
+  g_interrupted.store(true);
+}
+
+// Installs on_interrupt for SIGINT and SIGTERM for its lifetime.
+class InterruptHandler {
+ public:
+  InterruptHandler() : m_int(std::signal(SIGINT, on_interrupt)), m_term(std::signal(SIGTERM, on_interrupt)) {}
+  ~InterruptHandler() {
+    std::signal(SIGINT, m_int);
+    std::signal(SIGTERM, m_term);
+  }
+  InterruptHandler(const InterruptHandler&) = delete;
+  InterruptHandler& operator=(const InterruptHandler&) = delete;
+
+ private:
+  void (*m_int)(int);
+  void (*m_term)(int);
+};
 
 struct RenderCliOptions {
   std::string scene;
@@ -30,7 +58,9 @@ struct RenderCliOptions {
   int spp = -1;
   int threads = -1;
   int max_depth = -1;
-  long long seed = -1;
+  std::string seed;  // parsed by parse_seed: CLI11 would wrap "-5" and saturate 2^64
+  // Which of the four were given (a value given is checked against its range; there is no sentinel value).
+  bool spp_given = false, threads_given = false, max_depth_given = false, seed_given = false;
   double exposure = 0.0;
   bool filmic = false;
   bool aov = false;
@@ -42,21 +72,116 @@ struct RenderCliOptions {
   bool no_shadows = false;
   bool no_specular_ambient = false;
   bool drop_pi = false;
+  bool sh_lights = false;
   bool json = false;
   bool progress = false;
+  std::string shard;  // "I/N": render one part for `shadelab merge` (docs/scale-out.md)
+  std::string split = "samples";
+  bool split_given = false;
 };
 
+// "I/N" with 0 <= I < N <= max_shards; anything else names --shard.
+constexpr int max_shards = 100000;
+ShardSpec parse_shard(const std::string& text, const std::string& split) {
+  ShardSpec spec;
+  const auto slash = text.find('/');
+  auto number = [&](const std::string& part) -> long long {
+    if (part.empty() || part.size() > 9 || part.find_first_not_of("0123456789") != std::string::npos) {
+      throw UsageError("--shard: '" + text + "' is not I/N (shard I of N, 0 <= I < N)");
+    }
+    return std::stoll(part);
+  };
+  if (slash == std::string::npos) throw UsageError("--shard: '" + text + "' is not I/N (shard I of N, 0 <= I < N)");
+  const long long i = number(text.substr(0, slash));
+  const long long n = number(text.substr(slash + 1));
+  if (n < 1 || n > max_shards) throw UsageError(fmt::format("--shard: N = {} must be in [1, {}]", n, max_shards));
+  if (i >= n) throw UsageError(fmt::format("--shard: I = {} must be below N = {} (shards are 0 .. N-1)", i, n));
+  spec.index = static_cast<int>(i);
+  spec.count = static_cast<int>(n);
+  if (split == "samples") spec.split = ShardSplit::samples;
+  else if (split == "tiles") spec.split = ShardSplit::tiles;
+  else throw UsageError("--split: '" + split + "' is not one of samples | tiles");
+  return spec;
+}
+
+// render --shard: one part, written atomically, or skipped when --out already holds this very part (resume).
+// An interrupted shard writes nothing (a part is all of its samples or absent).
+void run_shard(const RenderCliOptions& o, const Scene& scene, RenderOptions ro) {
+  if (o.mode != "reference") throw UsageError("--shard: only the path tracer (--mode reference) renders in parts");
+  if (o.aov) throw UsageError("--shard: AOVs are not split; render them in one piece (without --shard)");
+  if (!o.png.empty()) throw UsageError("--shard: a part has no PNG; give --png to shadelab merge");
+  const std::filesystem::path out(o.out);
+  check_outputs(scene_inputs(scene), {{"--out", out}});
+  const int spp = ro.spp > 0 ? ro.spp : scene.settings.spp;
+  const int max_depth = ro.max_depth > 0 ? ro.max_depth : scene.settings.max_depth;
+  ShardInfo info = make_shard_info(scene, ro, spp, max_depth);
+  const std::string label = fmt::format("shard {}/{}", info.index, info.count);
+  std::error_code ec;
+  if (std::filesystem::exists(out, ec)) {
+    auto old = read_shard_info(out);
+    if (old && same_shard(*old, info) && read_shard_sums(out, *old)) {
+      if (o.json) {
+        print_json({{"scene", scene.source}, {"shard", info.index}, {"count", info.count}, {"split", info.split},
+                    {"outputs", nlohmann::json::array({out.string()})}, {"skipped", true}, {"nonfinite_samples", old->nonfinite_samples}});
+      } else {
+        fmt::print("{}: {} already in {}, skipped\n", scene.source, label, out.string());
+      }
+      std::fflush(stdout);
+      if (old->nonfinite_samples > 0) std::exit(1);
+      return;
+    }
+    warn("'" + out.string() + "' exists but is not " + label + " of this render (" +
+         (old ? std::string("another shard or render") : old.error().message) + "): rendering it again");
+  }
+  ProgressBar bar(label, o.progress);
+  ro.progress = [&](double f, int) { bar.update(f); };
+  g_interrupted.store(false);
+  g_signal.store(0);
+  ro.cancel = &g_interrupted;
+  auto handler = std::make_unique<InterruptHandler>();  // (std::optional trips GCC 12 -Wmaybe-uninitialized here)
+  auto result = render_scene(scene, ro);
+  bar.finish();
+  if (!result) throw UsageError(scene.source + ": " + result.error().message);
+  const RenderStats& st = result->stats;
+  if (st.cancelled || g_interrupted.load()) {
+    std::cerr << "shadelab: " << label << " interrupted: nothing written (run it again to render the part)\n";
+    std::exit(128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT));
+  }
+  info.nonfinite_samples = st.nonfinite_samples;
+  unwrap(write_shard(out, info, *result));
+  handler.reset();
+  if (o.json) {
+    print_json({{"scene", scene.source}, {"shard", info.index}, {"count", info.count}, {"split", info.split},
+                {"outputs", nlohmann::json::array({out.string()})}, {"skipped", false}, {"sample_begin", info.sample_begin},
+                {"sample_end", info.sample_end}, {"nonfinite_samples", st.nonfinite_samples}, {"seconds", st.seconds},
+                {"render_seconds", st.render_seconds}, {"rays", st.rays}});
+  } else {
+    fmt::print("{}: {} ({} split, samples [{}, {})) in {:.2f} s\nwrote {}\n", scene.source, label, info.split,
+               info.sample_begin, info.sample_end, st.seconds, out.string());
+  }
+  std::fflush(stdout);
+  if (st.nonfinite_samples > 0) {
+    std::cerr << "shadelab: " << scene.source << ": " << st.nonfinite_samples
+              << " samples were NaN or infinite (NaN pixels in the part); the render is wrong\n";
+    std::exit(1);
+  }
+}
+
 void run_render(const RenderCliOptions& o) {
-  Scene scene = o.scene.empty() ? default_scene() : unwrap(load_scene(o.scene));
-  if (o.seed >= 0) scene.settings.seed = static_cast<std::uint64_t>(o.seed);
-  RenderOptions ro;
-  if (o.spp != -1 && o.spp < 1) throw UsageError(fmt::format("--spp: {} must be >= 1", o.spp));
-  if (o.max_depth != -1 && o.max_depth < 1) throw UsageError(fmt::format("--max-depth: {} must be >= 1", o.max_depth));
-  if (o.threads != -1 && o.threads < 0) throw UsageError(fmt::format("--threads: {} must be >= 0", o.threads));
+  // The scene format's ranges (docs/scene-format.md), so an option never accepts what a scene refuses.
+  if (o.spp_given && o.spp < 1) throw UsageError(fmt::format("--spp: {} must be >= 1", o.spp));
+  check_range("--spp", o.spp_given, o.spp, 1, 1'000'000);
+  if (o.max_depth_given && o.max_depth < 1) throw UsageError(fmt::format("--max-depth: {} must be >= 1", o.max_depth));
+  check_range("--max-depth", o.max_depth_given, o.max_depth, 1, 1000);
+  if (o.threads_given && o.threads < 0) throw UsageError(fmt::format("--threads: {} must be >= 0", o.threads));
+  check_range("--threads", o.threads_given, o.threads, 0, max_render_threads);
   if (!std::isfinite(o.exposure)) throw UsageError("--exposure: must be finite");
-  ro.spp = o.spp;
-  ro.max_depth = o.max_depth;
-  ro.threads = o.threads;
+  Scene scene = o.scene.empty() ? default_scene() : unwrap(load_scene(o.scene));
+  if (o.seed_given) scene.settings.seed = parse_seed("--seed", o.seed);
+  RenderOptions ro;
+  ro.spp = o.spp_given ? o.spp : -1;
+  ro.max_depth = o.max_depth_given ? o.max_depth : -1;
+  ro.threads = o.threads_given ? o.threads : -1;
   ro.aovs = o.aov;
   if (o.sampling == "mis") ro.mode = SamplingMode::mis;
   else if (o.sampling == "brdf") ro.mode = SamplingMode::brdf;
@@ -74,8 +199,30 @@ void run_render(const RenderCliOptions& o) {
   go.shadows = !o.no_shadows;
   go.specular_ambient = !o.no_specular_ambient;
   go.drop_pi = o.drop_pi;
-  go.threads = o.threads;
-  if (o.spp != -1) go.spp = o.spp;
+  go.directional_in_sh = o.sh_lights;
+  {
+    bool marked = o.sh_lights;
+    for (const auto& l : scene.lights) {
+      if (const auto* d = std::get_if<DirectionalLight>(&l)) marked = marked || d->game_sh;
+    }
+    if (o.mode == "game" && marked && go.diffuse != GameAmbient::sh9) {
+      throw UsageError("--ambient " + o.ambient + ": directional lights added to the SH9 ambient (--sh-lights or \"game\": "
+                       "\"sh\" in the scene) need --ambient sh9");
+    }
+    if (o.sh_lights && o.mode != "game") throw UsageError("--sh-lights applies to --mode game");
+  }
+  go.threads = ro.threads;
+  if (o.spp_given) go.spp = o.spp;
+  if (!o.shard.empty() || o.split_given) {
+    if (o.shard.empty()) throw UsageError("--split applies to --shard I/N");
+    ro.shard = parse_shard(o.shard, o.split);
+    const std::filesystem::path part(o.out);
+    std::string part_ext = part.extension().string();
+    for (auto& c : part_ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (part_ext != ".exr") throw UsageError("--out: a part is written as .exr, got '" + o.out + "'");
+    run_shard(o, scene, ro);
+    return;
+  }
   const std::filesystem::path exr(o.out);
   std::string ext = exr.extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -83,6 +230,16 @@ void run_render(const RenderCliOptions& o) {
   FilmOutputs film;
   film.exr = exr;
   film.png = o.no_png ? std::filesystem::path() : (o.png.empty() ? exr.parent_path() / (exr.stem().string() + ".png") : std::filesystem::path(o.png));
+  if (!o.png.empty()) require_extension("--png", o.png, {".png"}, "the tone-mapped image");
+  {
+    std::vector<NamedPath> outputs{{"--out", film.exr}, {o.png.empty() ? "the PNG beside --out" : "--png", film.png}};
+    if (o.aov) {
+      for (const char* aov : {"albedo", "normal", "depth"}) {
+        outputs.push_back({std::string("the ") + aov + " AOV", exr.parent_path() / (exr.stem().string() + "." + aov + ".exr")});
+      }
+    }
+    check_outputs(scene_inputs(scene), outputs);
+  }
   film.exposure_stops = o.exposure;
   film.curve = o.filmic ? ToneCurve::filmic : ToneCurve::clamp;
   film.aovs = o.aov;
@@ -90,20 +247,23 @@ void run_render(const RenderCliOptions& o) {
   ProgressBar bar("render", o.progress);
   ro.progress = [&](double f, int) { bar.update(f); };
   g_interrupted.store(false);
+  g_signal.store(0);
   ro.cancel = &g_interrupted;
-  const auto previous = std::signal(SIGINT, on_interrupt);
+  std::optional<InterruptHandler> handler(std::in_place);
   auto result = o.mode == "game" ? render_game(scene, go) : render_scene(scene, ro);
-  std::signal(SIGINT, previous);
   bar.finish();
   if (!result) throw UsageError(scene.source + ": " + result.error().message);
   const auto written = unwrap(write_film(*result, film));
+  handler.reset();  // after the files are complete
   const RenderStats& st = result->stats;
+  const bool interrupted = st.cancelled || g_interrupted.load();
   const double pixels = static_cast<double>(scene.camera.width) * scene.camera.height;
   if (o.json) {
     nlohmann::json files = nlohmann::json::array();
     for (const auto& p : written) files.push_back(p.string());
     print_json({{"scene", scene.source}, {"mode", o.mode}, {"outputs", files}, {"width", scene.camera.width},
-                {"height", scene.camera.height}, {"spp", st.spp_done}, {"interrupted", st.cancelled},
+                {"height", scene.camera.height}, {"spp", st.spp_done}, {"interrupted", interrupted},
+                {"nonfinite_samples", st.nonfinite_samples},
                 {"seconds", st.seconds}, {"render_seconds", st.render_seconds}, {"rays", st.rays},
                 {"samples_per_second", pixels * st.spp_done / std::max(1e-9, st.seconds)},
                 {"rays_per_second", static_cast<double>(st.rays) / std::max(1e-9, st.seconds)}});
@@ -111,10 +271,16 @@ void run_render(const RenderCliOptions& o) {
     fmt::print("{}: {} x {}, {} spp in {:.2f} s ({:.3g} samples/s, {:.3g} rays/s){}\n", scene.source,
                scene.camera.width, scene.camera.height, st.spp_done, st.seconds,
                pixels * st.spp_done / std::max(1e-9, st.seconds), static_cast<double>(st.rays) / std::max(1e-9, st.seconds),
-               st.cancelled ? " - interrupted" : "");
+               interrupted ? " - interrupted" : "");
     for (const auto& p : written) fmt::print("wrote {}\n", p.string());
   }
-  if (st.cancelled) std::exit(130);
+  std::fflush(stdout);
+  if (interrupted) std::exit(128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT));
+  if (st.nonfinite_samples > 0) {
+    std::cerr << "shadelab: " << scene.source << ": " << st.nonfinite_samples
+              << " samples were NaN or infinite (kept in the image); the render is wrong\n";
+    std::exit(1);
+  }
 }
 
 }  // namespace
@@ -128,9 +294,9 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_option("--png", o->png, "tone-mapped PNG output (default: the EXR's name with .png)");
   sub->add_flag("--no-png", o->no_png, "write no PNG");
   sub->add_option("--spp", o->spp, "samples per pixel (default: the scene's; game mode: antialiasing, default 4)");
-  sub->add_option("--threads", o->threads, "threads, 0 = all cores (default: the scene's)");
+  sub->add_option("--threads", o->threads, "threads, 0 = all cores, at most 4096; more than the cores uses all cores (default: the scene's)");
   sub->add_option("--max-depth", o->max_depth, "path vertices after the camera (default: the scene's)");
-  sub->add_option("--seed", o->seed, "random seed (default: the scene's)");
+  sub->add_option("--seed", o->seed, "random seed, 0 to 2^64 - 1 (default: the scene's)");
   sub->add_option("--exposure", o->exposure, "PNG exposure in stops")->capture_default_str();
   sub->add_flag("--filmic", o->filmic, "PNG through the ACES filmic curve instead of clamping");
   sub->add_flag("--aov", o->aov, "also write albedo, normal and depth EXRs");
@@ -141,9 +307,21 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_flag("--no-shadows", o->no_shadows, "game mode: no shadow rays for punctual lights");
   sub->add_flag("--no-specular-ambient", o->no_specular_ambient, "game mode: no prefiltered specular");
   sub->add_flag("--drop-pi", o->drop_pi, "game mode, debug: forget the pi of the game light unit");
+  sub->add_flag("--sh-lights", o->sh_lights,
+                "game mode: add every directional light to the SH9 ambient (D3DX-style) instead of shading it per pixel");
   sub->add_flag("--json", o->json, "machine-readable summary");
   sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");
-  sub->callback([o, &command] { command.run = [o] { run_render(*o); }; });
+  sub->add_option("--shard", o->shard, "I/N: render part I of N (0 <= I < N) into --out, for shadelab merge (docs/scale-out.md)");
+  sub->add_option("--split", o->split, "with --shard: samples (a range of every pixel's samples) or tiles (every N-th 16 x 16 tile)")
+      ->capture_default_str();
+  sub->callback([o, sub, &command] {
+    o->spp_given = sub->count("--spp") > 0;
+    o->threads_given = sub->count("--threads") > 0;
+    o->max_depth_given = sub->count("--max-depth") > 0;
+    o->seed_given = sub->count("--seed") > 0;
+    o->split_given = sub->count("--split") > 0;
+    command.run = [o] { run_render(*o); };
+  });
 }
 
 }  // namespace

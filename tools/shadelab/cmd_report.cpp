@@ -8,9 +8,16 @@
 //                 and prefiltered specular against the exact integral;
 //   full:         the scene as given, reference at full depth: adds interreflection and area lights, which
 //                 game shading leaves out or approximates.
+//
+// Each wrapped-diffuse material gets its expected environment mismatch stated beside the measured one: the
+// SH wrap factors (1, (2 - w)/3, (1 - w)^2/4) are the bands of the wrap kernel (cos + w)/(pi (1 + w)^2) over
+// every direction with cos > -w, but the BRDF is 0 below the horizon, so under a uniform environment game
+// shading gives kd and the reference kd (1 + 2w)/(1 + w)^2 (docs/envmap.md). A render with NaN or infinite
+// samples is reported (stderr, "nonfinite_samples") and the command exits with 1.
 #include <fmt/core.h>
 
 #include <chrono>
+#include <iostream>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -18,6 +25,7 @@
 
 #include "cli_common.h"
 #include "progress.h"
+#include "shadelab/brdf/wrapped_diffuse.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/image/metrics.h"
 #include "shadelab/render/accel.h"
@@ -53,6 +61,11 @@ std::string html_escape(const std::string& s) {
   }
   return o;
 }
+
+// Reference / game exit radiance of wrapped diffuse under a uniform environment: the hemisphere integral of
+// (cos + w)/(pi (1 + w)^2) is (1 + 2w)/(1 + w)^2, while the SH wrap factors' band 0 (1) counts the whole
+// kernel, below the horizon included (wrapped_diffuse.h).
+double wrap_uniform_reference_over_game(double w) { return (1.0 + 2.0 * w) / ((1.0 + w) * (1.0 + w)); }
 
 Scene variant(const Scene& base, const std::string& kind) {
   Scene s = base;
@@ -141,13 +154,24 @@ void run_report(const ReportOptions& o) {
     scene.camera.width = o.width;
   }
   const fs::path dir(o.out);
+  {
+    std::vector<NamedPath> outputs{{"--out", dir / "index.html"}};
+    for (const char* kind : {"punctual", "environment", "full"}) {
+      for (const char* file : {"_reference.png", "_reference.exr", "_game.png", "_game.exr", "_heatmap.png"}) {
+        outputs.push_back({"--out", dir / (std::string(kind) + file)});
+      }
+    }
+    check_outputs(scene_inputs(scene), outputs);
+  }
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw UsageError("--out: cannot create the folder '" + o.out + "': " + ec.message());
   const std::vector<int> ids = material_ids(scene);
   nlohmann::json sections = nlohmann::json::array();
   std::string body;
+  std::vector<std::string> wrap_lines;
   ProgressBar bar("report", false);
+  std::uint64_t nonfinite = 0;
   const char* kinds[3] = {"punctual", "environment", "full"};
   for (int k = 0; k < 3; ++k) {
     const std::string kind = kinds[k];
@@ -159,6 +183,7 @@ void run_report(const ReportOptions& o) {
     GameOptions go;
     auto game = render_game(s, go);
     if (!game) throw UsageError(scene.source + ": " + game.error().message);
+    nonfinite += ref->stats.nonfinite_samples + game->stats.nonfinite_samples;
     bar.update((k + 1) / 3.0);
     CompareOptions co;
     co.name_a = kind + " game";
@@ -175,11 +200,24 @@ void run_report(const ReportOptions& o) {
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
       const MaskedFigures f = masked(game->beauty, ref->beauty, ids, static_cast<int>(m));
       if (f.pixels == 0) continue;
-      materials.push_back({{"material", scene.materials[m].name}, {"model", scene.materials[m].model}, {"pixels", f.pixels},
-                           {"rmse", f.rmse}, {"relative_mse", f.relative_mse}, {"luminance_ratio", f.luminance_ratio}});
-      rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4f}</td></tr>\n",
+      nlohmann::json entry = {{"material", scene.materials[m].name}, {"model", scene.materials[m].model}, {"pixels", f.pixels},
+                              {"rmse", f.rmse}, {"relative_mse", f.relative_mse}, {"luminance_ratio", f.luminance_ratio}};
+      std::string note;
+      if (const auto* wd = dynamic_cast<const WrappedDiffuse*>(scene.materials[m].brdf.get()); wd != nullptr && kind == "environment") {
+        const double w = wd->wrap();
+        const double ratio = wrap_uniform_reference_over_game(w);
+        entry["wrap"] = {{"w", w}, {"uniform_reference_over_game", ratio}, {"uniform_luminance_ratio", 1.0 / ratio}};
+        note = fmt::format(" (wrap w = {:.3g}: under a uniform environment game kd, reference kd (1+2w)/(1+w)^2 = {:.4f} kd; "
+                           "expected game/ref {:.4f})",
+                           w, ratio, 1.0 / ratio);
+        wrap_lines.push_back(fmt::format("'{}' (w = {:.3g}): under a uniform environment game kd, reference {:.4f} kd, "
+                                         "expected luminance game/ref {:.4f} (measured {:.4f})",
+                                         scene.materials[m].name, w, ratio, 1.0 / ratio, f.luminance_ratio));
+      }
+      materials.push_back(entry);
+      rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4f}{}</td></tr>\n",
                           html_escape(scene.materials[m].name), html_escape(scene.materials[m].model), f.pixels, f.rmse,
-                          f.relative_mse, f.luminance_ratio);
+                          f.relative_mse, f.luminance_ratio, html_escape(note));
     }
     sections.push_back({{"lighting", kind}, {"rmse", d.rmse}, {"relative_mse", d.relative_mse}, {"max_error", d.max_abs_error},
                         {"luminance_ratio", d.mean_luminance_ratio}, {"ssim", std::isfinite(d.ssim) ? nlohmann::json(d.ssim) : nlohmann::json(nullptr)},
@@ -200,19 +238,30 @@ void run_report(const ReportOptions& o) {
       " td,th{{border:1px solid #ccc;padding:2px 8px;text-align:right}}</style></head><body>\n<h1>Game shading against the reference: {0}</h1>\n"
       "<p><b>punctual</b>: only punctual lights, direct light: the game shading equation (pi f c cos with c the game colour) should match the "
       "path tracer within its noise. <b>environment</b>: only the environment, direct light: SH9 diffuse and prefiltered specular against the exact "
-      "integral. <b>full</b>: everything, the reference at full depth: adds interreflection and area lights, which game shading leaves out.</p>\n{1}"
+      "integral. <b>full</b>: everything, the reference at full depth: adds interreflection and area lights, which game shading leaves out.</p>\n"
+      "<p><b>wrapped diffuse</b>: the SH wrap factors 1, (2-w)/3, (1-w)^2/4 are the bands of (cos+w)/(pi (1+w)^2) over every direction with "
+      "cos &gt; -w; the BRDF is 0 below the horizon, so under a uniform environment game shading gives kd and the reference kd (1+2w)/(1+w)^2 "
+      "(0.889 kd at w = 0.5). Wrapped materials show the expected ratio beside the measured one.</p>\n{1}"
       "</body></html>\n",
       html_escape(scene.source), body);
   unwrap(write_file_atomically(dir / "index.html", std::vector<char>(html.begin(), html.end())));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (o.json) {
-    print_json({{"scene", scene.source}, {"report", (dir / "index.html").string()}, {"sections", sections}, {"seconds", seconds}});
+    print_json({{"scene", scene.source}, {"report", (dir / "index.html").string()}, {"sections", sections},
+                {"nonfinite_samples", nonfinite}, {"seconds", seconds}});
   } else {
     for (const auto& s : sections) {
       fmt::print("{:<12} RMSE {:.4g}  relative MSE {:.4g}  luminance game/ref {:.4f}\n", s["lighting"].get<std::string>(),
                  s["rmse"].get<double>(), s["relative_mse"].get<double>(), s["luminance_ratio"].get<double>());
     }
+    for (const auto& line : wrap_lines) fmt::print("wrapped diffuse: {}\n", line);
     fmt::print("wrote {}\n", (dir / "index.html").string());
+  }
+  if (nonfinite > 0) {
+    std::fflush(stdout);
+    std::cerr << "shadelab: " << scene.source << ": " << nonfinite
+              << " samples were NaN or infinite (kept in the images); the report is wrong\n";
+    std::exit(1);
   }
 }
 

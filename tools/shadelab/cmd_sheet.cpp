@@ -12,6 +12,7 @@
 #include <fmt/core.h>
 
 #include <chrono>
+#include <iostream>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "cli_common.h"
+#include "shadelab/render/threads.h"
 #include "shadelab/analysis/plot_data.h"
 #include "shadelab/core/constants.h"
 #include "shadelab/image/image_io.h"
@@ -149,6 +151,8 @@ void run_sheet(const SheetOptions& o) {
   if (o.spp < 1 || o.spp > 65536) throw UsageError(fmt::format("--spp: {} is out of range [1, 65536]", o.spp));
   if (o.seed < 0) throw UsageError(fmt::format("--seed: {} must be >= 0", o.seed));
   if (o.threads < 0) throw UsageError(fmt::format("--threads: {} must be >= 0", o.threads));
+  check_range("--threads", true, o.threads, 0, max_render_threads);
+  check_outputs({{"--hdri", o.hdri}}, {{"--out", o.out}, {"--exr", o.exr}});
   if (!std::isfinite(o.exposure)) throw UsageError("--exposure: must be finite");
   if (!std::isfinite(o.intensity) || o.intensity < 0.0) {
     throw UsageError(fmt::format("--intensity: {} must be finite and >= 0", o.intensity));
@@ -225,12 +229,14 @@ void run_sheet(const SheetOptions& o) {
   }
   const auto start = std::chrono::steady_clock::now();
   RenderOptions ro;
+  std::uint64_t nonfinite = 0;
   for (auto& cell : cells) {
     cell.x = gap + cell.column * (o.cell + gap);
     cell.y = gap + cell.row * (o.cell + gap);
     const Scene scene = cell_scene(o, to_light, light, env, cell);
     auto result = render_scene(scene, ro);
     if (!result) throw UsageError("sheet: " + cell.label + ": " + result.error().message);
+    nonfinite += result->stats.nonfinite_samples;
     const Image shown = tonemap(result->beauty, o.exposure, o.filmic ? ToneCurve::filmic : ToneCurve::clamp);
     for (int y = 0; y < o.cell; ++y) {
       for (int x = 0; x < o.cell; ++x) {
@@ -295,10 +301,16 @@ void run_sheet(const SheetOptions& o) {
                 {"ambient", o.ambient},
                 {"spp", o.spp},
                 {"seed", o.seed},
+                {"nonfinite_samples", nonfinite},
                 {"seconds", seconds}});
   } else {
     fmt::print("{} x {} cells of {} px, {} spp in {:.2f} s\nwrote {}\n", rows, columns, o.cell, o.spp, seconds, o.out);
     if (!o.exr.empty()) fmt::print("wrote {}\n", o.exr);
+  }
+  if (nonfinite > 0) {
+    std::fflush(stdout);
+    std::cerr << "shadelab: sheet: " << nonfinite << " samples were NaN or infinite (kept in the image); the sheet is wrong\n";
+    std::exit(1);
   }
 }
 

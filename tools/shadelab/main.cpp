@@ -1,12 +1,15 @@
-// shadelab: the command-line tool. Exit codes: 0 success, 1 a check that ran and failed,
-// 2 bad input (one line on stderr naming the problem).
+// shadelab: the command-line tool. Exit codes: 0 success, 1 a check that ran and failed (or a render with
+// non-finite samples), 2 bad input (one line on stderr naming the problem), 3 an internal error.
+// Every message is one printable line of bounded length (core/text.h).
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <exception>
 #include <iostream>
+#include <new>
 
 #include "cli_common.h"
+#include "shadelab/core/text.h"
 
 int main(int argc, char** argv) {
   using namespace shadelab::cli;
@@ -26,7 +29,7 @@ int main(int argc, char** argv) {
       names += (names.empty() ? "" : ", ") + sub->get_name();
     }
     if (!known) {
-      std::cerr << "shadelab: unknown command '" << argv[1] << "' (commands: " << names << ")\n";
+      std::cerr << "shadelab: unknown command '" << shadelab::printable(argv[1]) << "' (commands: " << names << ")\n";
       return 2;
     }
   }
@@ -43,16 +46,20 @@ int main(int argc, char** argv) {
     return 0;
   } catch (const CLI::ParseError& e) {
     // One line, exit code 2, whatever CLI11's own code would have been.
-    std::cerr << "shadelab: " << e.what() << " (see --help)\n";
+    std::cerr << "shadelab: " << shadelab::printable_message(e.what()) << " (see --help)\n";
     return 2;
   }
   try {
     if (command.run) command.run();
   } catch (const UsageError& e) {
-    std::cerr << "shadelab: " << e.what() << "\n";
+    std::cerr << "shadelab: " << shadelab::printable_message(e.what()) << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    // The inputs are within the documented limits (docs/testing.md) but the machine's memory is not.
+    std::cerr << "shadelab: out of memory (the input is within shadelab's limits; this machine has too little memory for it)\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "shadelab: internal error: " << e.what() << "\n";
+    std::cerr << "shadelab: internal error: " << shadelab::printable_message(e.what()) << "\n";
     return 3;
   }
   return 0;

@@ -124,6 +124,10 @@ std::string describe(const ParamSet& s) {
   return text;
 }
 
+// How GoogleTest prints a parameter (test listings, CTest names, failures): the model and its parameters,
+// not "96-byte object <90-FB ...>".
+void PrintTo(const ParamSet& s, std::ostream* os) { *os << describe(s) << " (" << s.label << ")"; }
+
 constexpr double chi_square_angles[] = {0.0, 30.0, 60.0, 80.0};
 constexpr double check_angles[] = {0.0, 30.0, 60.0, 80.0, 89.0};
 
@@ -255,6 +259,13 @@ TEST_P(Models, PdfIntegratesToOne) {
     const QuadratureResult q = pdf_integral(brdf(), view(t));
     EXPECT_NEAR(q.value, 1.0, 1e-6) << name() << " theta_o " << t;
   }
+}
+
+// CTest lists parameterized tests with GoogleTest's print of the parameter: it must read as the model and
+// its parameters (issue 16, 7), not as the object's bytes.
+TEST(ModelsSuite, ParametersPrintReadably) {
+  const ParamSet p{"cook-torrance", "extra", {{"kd", "0"}, {"n", "100"}}, false};
+  EXPECT_EQ(::testing::PrintToString(p), "cook-torrance kd=0 n=100 (extra)");
 }
 
 TEST(ModelsSuite, CoversEveryRegisteredModel) {

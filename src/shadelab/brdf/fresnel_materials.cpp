@@ -58,13 +58,16 @@ constexpr std::array<FresnelMaterial, 13> k_materials{{
     // Iron: Johnson & Christy 1974 (Rakic et al. 1998 has no iron), lerp 0.617-0.659, 0.549-0.582,
     // 0.431-0.451.
     {"iron", true, {2.9114, 2.9497, 2.5845}, {3.0893, 2.9318, 2.7670}, k_wl, k_johnson_christy_1974},
-    // Titanium, chromium, nickel, platinum: the Lorentz-Drude model of Rakic et al. 1998 (their fitted
-    // parameters, which reproduce the measured data they compiled), evaluated on a fine grid and interpolated
-    // between the two grid points around each wavelength (the grid steps are under 4 nm).
-    // Titanium: lerp 0.64878-0.65193, 0.54781-0.55047, 0.44934-0.45152.
-    {"titanium", true, {2.0945, 1.7896, 1.3343}, {3.1986, 3.0017, 2.7596}, k_wl, k_rakic_1998},
-    // Chromium: lerp 0.64872-0.65231, 0.54960-0.55264, 0.44795-0.45044.
-    {"chromium", true, {3.5348, 2.9008, 2.1448}, {4.3476, 4.2311, 3.8623}, k_wl, k_rakic_1998},
+    // Titanium and chromium: Johnson & Christy 1974's measured table, lerp 0.617-0.659, 0.549-0.582,
+    // 0.431-0.451, as for iron. (Until issue 16 these came from Rakic et al. 1998's Lorentz-Drude fit, which
+    // the numbers matched, but whose fit misses the visible for these two: Ti's F0 rose toward the blue,
+    // 0.577 / 0.574 / 0.592, and Cr's was 0.64-0.65, where the measurements give 0.616 / 0.582 / 0.545 and a
+    // flat 0.555, the values published material tables list.)
+    {"titanium", true, {2.7407, 2.5418, 2.2670}, {3.8143, 3.4345, 3.0385}, k_wl, k_johnson_christy_1974},
+    {"chromium", true, {3.1071, 3.1812, 2.3230}, {3.3314, 3.3291, 3.1350}, k_wl, k_johnson_christy_1974},
+    // Nickel, platinum: the Lorentz-Drude model of Rakic et al. 1998 (their fitted parameters, which
+    // reproduce the measured data they compiled), evaluated on a fine grid and interpolated between the two
+    // grid points around each wavelength (the grid steps are under 4 nm).
     // Nickel: lerp 0.64983-0.65193, 0.54958-0.55136, 0.44862-0.45006.
     {"nickel", true, {2.0587, 1.8145, 1.6493}, {3.7635, 3.2587, 2.6705}, k_wl, k_rakic_1998},
     // Platinum: lerp 0.64977-0.65232, 0.54908-0.55123, 0.44967-0.45144.

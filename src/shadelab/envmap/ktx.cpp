@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -44,7 +45,8 @@ void put(std::vector<char>& out, T v) {
 
 }  // namespace
 
-Result<std::vector<char>> encode_ktx_cubemap(const std::vector<CubeMap>& levels, KtxPixelType type) {
+Result<std::vector<char>> encode_ktx_cubemap(const std::vector<CubeMap>& levels, KtxPixelType type, KtxEncodeInfo* info) {
+  std::uint64_t clamped = 0;
   if (levels.empty() || levels[0].size < 1) return make_error("ktx: nothing to write (no mip levels)");
   for (std::size_t i = 0; i < levels.size(); ++i) {
     const int expected = std::max(1, levels[0].size >> i);
@@ -78,7 +80,10 @@ Result<std::vector<char>> encode_ktx_cubemap(const std::vector<CubeMap>& levels,
         for (int c = 0; c < 4; ++c) {
           const float v = c < 3 ? face.data[3 * p + static_cast<std::size_t>(c)] : 1.0f;
           if (half) {
-            put(out, Imath::half(v).bits());
+            // Clamp finite values to the half range (Imath::half would round them to +-inf).
+            const float clamped_v = std::isfinite(v) ? std::clamp(v, -ktx_half_max, ktx_half_max) : v;
+            clamped += std::isfinite(v) && clamped_v != v ? 1 : 0;
+            put(out, Imath::half(clamped_v).bits());
           } else {
             put(out, v);
           }
@@ -86,6 +91,7 @@ Result<std::vector<char>> encode_ktx_cubemap(const std::vector<CubeMap>& levels,
       }
     }
   }
+  if (info != nullptr) info->clamped_values = clamped;
   return out;
 }
 
@@ -140,8 +146,9 @@ Result<std::vector<CubeMap>> decode_ktx_cubemap(const std::vector<char>& in) {
   return levels;
 }
 
-Result<bool> write_ktx_cubemap(const std::vector<CubeMap>& levels, const std::filesystem::path& path, KtxPixelType type) {
-  auto bytes = encode_ktx_cubemap(levels, type);
+Result<bool> write_ktx_cubemap(const std::vector<CubeMap>& levels, const std::filesystem::path& path, KtxPixelType type,
+                               KtxEncodeInfo* info) {
+  auto bytes = encode_ktx_cubemap(levels, type, info);
   if (!bytes) return make_error(path.string() + ": " + bytes.error().message);
   return write_file_atomically(path, *bytes);
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -83,6 +84,36 @@ TEST(Ktx, WritesAtomically) {
   EXPECT_TRUE(decode_ktx_cubemap(bytes).has_value());
   EXPECT_FALSE(write_ktx_cubemap(chain(4), dir / "missing" / "env.ktx").has_value());
   std::filesystem::remove_all(dir);
+}
+
+// issue 16, 3: values above 65504 became +inf in RGBA16F with exit 0. They are clamped to the largest
+// finite half (as the EXR half writer does) and counted; NaN is neither clamped nor counted. The half bits
+// are read back from the file bytes, not through the encoder's own conversion.
+TEST(Ktx, HalfValuesBeyondTheRangeAreClampedAndCounted) {
+  CubeMap cube(1);
+  cube.set(0, 0, 0, {2e5, -3e7, 1.0});
+  cube.set(1, 0, 0, {std::nan(""), 65504.0, 7e4});  // 65504 is the largest half itself: kept, not counted
+  KtxEncodeInfo info;
+  const auto bytes = encode_ktx_cubemap({cube}, KtxPixelType::half, &info);
+  ASSERT_TRUE(bytes.has_value()) << bytes.error().message;
+  EXPECT_EQ(info.clamped_values, 3u);
+  auto half_at = [&](std::size_t face, std::size_t channel) {
+    std::uint16_t bits = 0;
+    // 64-byte header, 4-byte imageSize, then per face one texel of 4 halves.
+    std::memcpy(&bits, bytes->data() + 68 + face * 8 + channel * 2, 2);
+    return bits;
+  };
+  EXPECT_EQ(half_at(0, 0), 0x7BFFu);  // +65504: exponent 30, mantissa all ones
+  EXPECT_EQ(half_at(0, 1), 0xFBFFu);  // -65504
+  EXPECT_EQ(half_at(0, 2), 0x3C00u);  // 1
+  EXPECT_EQ(half_at(1, 0) & 0x7C00u, 0x7C00u);  // NaN stays NaN (exponent all ones, mantissa non-zero)
+  EXPECT_NE(half_at(1, 0) & 0x03FFu, 0u);
+  EXPECT_EQ(half_at(1, 1), 0x7BFFu);
+  EXPECT_EQ(half_at(1, 2), 0x7BFFu);
+  // Float KTX keeps everything and clamps nothing.
+  KtxEncodeInfo full;
+  ASSERT_TRUE(encode_ktx_cubemap({cube}, KtxPixelType::float32, &full).has_value());
+  EXPECT_EQ(full.clamped_values, 0u);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "shadelab/image/image_io.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -22,6 +23,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <charconv>
+#include <csignal>
 #include <chrono>
 #include <climits>
 #include <cmath>
@@ -31,11 +34,13 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <string_view>
 #include <system_error>
 #include <utility>
 #include <vector>
 
+#include "shadelab/core/text.h"
 #include "shadelab/image/rgbe.h"
 #include "shadelab/image/srgb.h"
 
@@ -54,7 +59,7 @@ std::string one_line(std::string_view text) {
   while (!s.empty() && s.back() == ' ') {
     s.pop_back();
   }
-  return s.empty() ? std::string("unknown error") : s;
+  return s.empty() ? std::string("unknown error") : printable(s, max_library_bytes);
 }
 
 Error read_error(const fs::path& path, std::string_view reason) {
@@ -116,48 +121,97 @@ bool box_contains(const Imath::Box2i& outer, const Imath::Box2i& inner) {
          inner.max.y <= outer.max.y;
 }
 
-// Copies the part of an RGB float buffer covering `data_window` that lies inside `display_window` into
-// `image`, whose pixel (0, 0) is display_window.min.
-void copy_into_display(const std::vector<float>& buffer, const Imath::Box2i& data_window,
-                       const Imath::Box2i& display_window, Image& image) {
-  const int x0 = std::max(data_window.min.x, display_window.min.x);
-  const int x1 = std::min(data_window.max.x, display_window.max.x);
-  const int y0 = std::max(data_window.min.y, display_window.min.y);
-  const int y1 = std::min(data_window.max.y, display_window.max.y);
-  if (x0 > x1 || y0 > y1) {
-    return;
+constexpr std::uint64_t bytes_per_pixel = 3 * sizeof(float);  // an Image pixel
+constexpr std::uint64_t strip_bytes = 16ULL << 20;              // a strip buffer, when one is needed
+
+std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1ULL << 20) - 1) >> 20) + " MiB"; }
+
+// Refuses a read whose allocations (the image and the decoder's buffers) would exceed the budget.
+Result<bool> check_budget(const fs::path& path, std::uint64_t bytes, const std::string& what) {
+  if (bytes <= image_read_budget_bytes) {
+    return true;
   }
-  const auto buffer_width = static_cast<std::size_t>(box_width(data_window));
-  const auto row_floats = static_cast<std::size_t>(x1 - x0 + 1) * 3;
+  return read_error(path, what + " needs " + mib(bytes) + ", more than the image memory budget of " +
+                              mib(image_read_budget_bytes));
+}
+
+// OpenEXR allocates line-offset tables and tile buffers from the header before any pixel is read: bound the
+// sizes it accepts (its sanity check then throws, which read_image reports).
+void limit_openexr() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    Imf::Header::setMaxImageSize(static_cast<int>(max_image_side), static_cast<int>(max_image_side));
+    Imf::Header::setMaxTileSize(static_cast<int>(max_exr_tile_side), static_cast<int>(max_exr_tile_side));
+  });
+}
+
+// The part of the data window inside the display window (empty when max < min).
+Imath::Box2i overlap(const Imath::Box2i& display_window, const Imath::Box2i& data_window) {
+  return Imath::Box2i(Imath::V2i(std::max(data_window.min.x, display_window.min.x),
+                                 std::max(data_window.min.y, display_window.min.y)),
+                      Imath::V2i(std::min(data_window.max.x, display_window.max.x),
+                                 std::min(data_window.max.y, display_window.max.y)));
+}
+
+// Rows per strip for a buffer `row_bytes` wide: as many as fit in strip_bytes, at least one.
+int strip_rows(std::uint64_t row_bytes, int rows) {
+  return static_cast<int>(std::clamp<std::uint64_t>(strip_bytes / std::max<std::uint64_t>(row_bytes, 1), 1,
+                                                    static_cast<std::uint64_t>(std::max(rows, 1))));
+}
+
+// Copies rows [y0, y1] of an RGB float strip over the data window's columns into `image` (pixel (0, 0) is
+// display_window.min), keeping only the columns of `keep` (the overlap).
+void copy_strip(const std::vector<float>& strip, const Imath::Box2i& data_window, int y0, int y1,
+                const Imath::Box2i& keep, const Imath::Box2i& display_window, Image& image) {
+  const auto strip_width = static_cast<std::size_t>(box_width(data_window));
+  const auto row_floats = static_cast<std::size_t>(keep.max.x - keep.min.x + 1) * 3;
   for (int y = y0; y <= y1; ++y) {
-    const std::size_t src = (static_cast<std::size_t>(y - data_window.min.y) * buffer_width +
-                             static_cast<std::size_t>(x0 - data_window.min.x)) * 3;
-    const std::size_t dst = image.index(x0 - display_window.min.x, y - display_window.min.y);
-    std::copy_n(buffer.begin() + static_cast<std::ptrdiff_t>(src), row_floats,
+    const std::size_t src = (static_cast<std::size_t>(y - y0) * strip_width +
+                             static_cast<std::size_t>(keep.min.x - data_window.min.x)) * 3;
+    const std::size_t dst = image.index(keep.min.x - display_window.min.x, y - display_window.min.y);
+    std::copy_n(strip.begin() + static_cast<std::ptrdiff_t>(src), row_floats,
                 image.data.begin() + static_cast<std::ptrdiff_t>(dst));
   }
 }
 
 // Luminance/chroma files (Y, RY, BY, subsampled chroma) hold half data; RgbaInputFile converts them to RGB.
+// Read in strips of the overlapping rows, so the buffers follow the data window and a strip budget.
 Result<Image> read_exr_luminance_chroma(const fs::path& path, const Imath::Box2i& display_window,
                                         ReadInfo& info) {
   Imf::RgbaInputFile file(path.c_str());
   const Imath::Box2i data_window = file.dataWindow();
+  const Imath::Box2i keep = overlap(display_window, data_window);
   const auto w = static_cast<std::size_t>(box_width(data_window));
-  const auto h = static_cast<std::size_t>(box_height(data_window));
-  std::vector<Imf::Rgba> pixels(w * h);
-  file.setFrameBuffer(Imf::ComputeBasePointer(pixels.data(), data_window), 1, w);
-  file.readPixels(data_window.min.y, data_window.max.y);
-  std::vector<float> buffer(w * h * 3);
-  for (std::size_t i = 0; i < w * h; ++i) {
-    buffer[3 * i] = static_cast<float>(pixels[i].r);
-    buffer[3 * i + 1] = static_cast<float>(pixels[i].g);
-    buffer[3 * i + 2] = static_cast<float>(pixels[i].b);
+  const int rows = keep.max.y - keep.min.y + 1;
+  const int per_strip = strip_rows(w * sizeof(Imf::Rgba), rows);
+  const std::uint64_t image_bytes =
+      static_cast<std::uint64_t>(box_width(display_window)) * box_height(display_window) * bytes_per_pixel;
+  if (auto ok = check_budget(path, image_bytes + w * static_cast<std::uint64_t>(per_strip) * (sizeof(Imf::Rgba) + bytes_per_pixel),
+                             "reading it");
+      !ok) {
+    return ok.error();
   }
   Image image(static_cast<int>(box_width(display_window)), static_cast<int>(box_height(display_window)));
-  copy_into_display(buffer, data_window, display_window, image);
   info.sample_type = "half";
   info.grey = false;
+  if (keep.max.x < keep.min.x || rows <= 0) {
+    return image;
+  }
+  std::vector<Imf::Rgba> pixels(w * static_cast<std::size_t>(per_strip));
+  std::vector<float> strip(w * static_cast<std::size_t>(per_strip) * 3);
+  for (int y0 = keep.min.y; y0 <= keep.max.y; y0 += per_strip) {
+    const int y1 = std::min(keep.max.y, y0 + per_strip - 1);
+    const Imath::Box2i window(Imath::V2i(data_window.min.x, y0), Imath::V2i(data_window.max.x, y1));
+    file.setFrameBuffer(Imf::ComputeBasePointer(pixels.data(), window), 1, w);
+    file.readPixels(y0, y1);
+    const std::size_t n = w * static_cast<std::size_t>(y1 - y0 + 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      strip[3 * i] = static_cast<float>(pixels[i].r);
+      strip[3 * i + 1] = static_cast<float>(pixels[i].g);
+      strip[3 * i + 2] = static_cast<float>(pixels[i].b);
+    }
+    copy_strip(strip, data_window, y0, y1, keep, display_window, image);
+  }
   return image;
 }
 
@@ -175,6 +229,7 @@ const char* sample_type_name(Imf::PixelType type) {
 }
 
 Result<Image> read_exr(const fs::path& path, ReadInfo& info) {
+  limit_openexr();
   Imf::InputFile file(path.c_str());
   const Imf::Header& header = file.header();
   const Imath::Box2i display_window = header.displayWindow();
@@ -184,7 +239,7 @@ Result<Image> read_exr(const fs::path& path, ReadInfo& info) {
   if (width <= 0 || height <= 0 || box_width(data_window) <= 0 || box_height(data_window) <= 0) {
     return read_error(path, "image has zero size");
   }
-  if (width * height > max_image_pixels ||
+  if (width * height > max_image_pixels || width > max_image_side || height > max_image_side ||
       box_width(data_window) * box_height(data_window) > max_image_pixels) {
     return read_error(path, "image is too large (" + std::to_string(width) + " x " + std::to_string(height) +
                                 " display window; the limit is " + std::to_string(max_image_pixels) + " pixels)");
@@ -225,33 +280,47 @@ Result<Image> read_exr(const fs::path& path, ReadInfo& info) {
   }
   info.sample_type = sample_type_name((used[0] != nullptr ? used[0] : (used[1] != nullptr ? used[1] : used[2]))->type);
 
-  Image image(static_cast<int>(width), static_cast<int>(height));
   // Read straight into the image when the data window lies inside the display window (the usual case);
-  // otherwise into a buffer over the data window, copied afterwards.
+  // otherwise only the rows that overlap the display window, in strips over the data window's columns.
   const bool direct = box_contains(display_window, data_window);
-  std::vector<float> buffer;
-  if (!direct) {
-    buffer.assign(static_cast<std::size_t>(box_width(data_window) * box_height(data_window)) * 3, 0.0f);
+  const Imath::Box2i keep = overlap(display_window, data_window);
+  const int rows = keep.max.y - keep.min.y + 1;
+  const auto data_width = static_cast<std::uint64_t>(box_width(data_window));
+  const int per_strip = direct ? 0 : strip_rows(data_width * bytes_per_pixel, rows);
+  const std::uint64_t image_bytes = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * bytes_per_pixel;
+  if (auto ok = check_budget(path, image_bytes + data_width * static_cast<std::uint64_t>(per_strip) * bytes_per_pixel,
+                             "reading its " + std::to_string(width) + " x " + std::to_string(height) + " display window");
+      !ok) {
+    return ok.error();
   }
-  float* base = direct ? image.data.data() : buffer.data();
-  const Imath::Box2i& base_window = direct ? display_window : data_window;
-  const std::size_t x_stride = 3 * sizeof(float);
-  const std::size_t y_stride = x_stride * static_cast<std::size_t>(box_width(base_window));
-  Imf::FrameBuffer frame_buffer;
+  Image image(static_cast<int>(width), static_cast<int>(height));
   const char* names_rgb[3] = {"R", "G", "B"};
-  for (int c = 0; c < 3; ++c) {
-    const char* name = rgb ? names_rgb[c] : (c == 0 ? "Y" : nullptr);
-    if (name == nullptr) {
-      continue;
+  const std::size_t x_stride = 3 * sizeof(float);
+  // A frame buffer whose pixel `origin` is at `base`, `w` pixels per row.
+  auto frame_buffer = [&](float* base, const Imath::V2i& origin, long long w, long long h) {
+    Imf::FrameBuffer fb;
+    for (int c = 0; c < 3; ++c) {
+      const char* name = rgb ? names_rgb[c] : (c == 0 ? "Y" : nullptr);
+      if (name == nullptr) {
+        continue;
+      }
+      // A channel named here but absent from the file is filled with 0 by OpenEXR.
+      fb.insert(name, Imf::Slice::Make(Imf::FLOAT, base + c, origin, w, h, x_stride,
+                                       x_stride * static_cast<std::size_t>(w), 1, 1, 0.0));
     }
-    // A channel named here but absent from the file is filled with 0 by OpenEXR.
-    frame_buffer.insert(name, Imf::Slice::Make(Imf::FLOAT, base + c, base_window.min, box_width(base_window),
-                                               box_height(base_window), x_stride, y_stride, 1, 1, 0.0));
-  }
-  file.setFrameBuffer(frame_buffer);
-  file.readPixels(data_window.min.y, data_window.max.y);
-  if (!direct) {
-    copy_into_display(buffer, data_window, display_window, image);
+    return fb;
+  };
+  if (direct) {
+    file.setFrameBuffer(frame_buffer(image.data.data(), display_window.min, width, height));
+    file.readPixels(data_window.min.y, data_window.max.y);
+  } else if (keep.max.x >= keep.min.x && rows > 0) {
+    std::vector<float> strip(static_cast<std::size_t>(data_width) * static_cast<std::size_t>(per_strip) * 3);
+    for (int y0 = keep.min.y; y0 <= keep.max.y; y0 += per_strip) {
+      const int y1 = std::min(keep.max.y, y0 + per_strip - 1);
+      file.setFrameBuffer(frame_buffer(strip.data(), Imath::V2i(data_window.min.x, y0), box_width(data_window), y1 - y0 + 1));
+      file.readPixels(y0, y1);
+      copy_strip(strip, data_window, y0, y1, keep, display_window, image);
+    }
   }
   if (!rgb) {
     for (std::size_t i = 0; i < image.data.size(); i += 3) {
@@ -394,7 +463,9 @@ Result<Image> read_hdr(const fs::path& path, ReadInfo& info) {
   if (!bytes) {
     return bytes.error();
   }
-  Result<Image> image = decode_rgbe(bytes->data(), bytes->size(), max_image_pixels);
+  // The image is 12 bytes a pixel and the decoder's scan-line buffer one row: the budget bounds the pixels.
+  const long long budget_pixels = static_cast<long long>(image_read_budget_bytes / bytes_per_pixel);
+  Result<Image> image = decode_rgbe(bytes->data(), bytes->size(), std::min(max_image_pixels, budget_pixels));
   if (!image) {
     return read_error(path, image.error().message);
   }
@@ -443,6 +514,88 @@ void decode_srgb(const T* samples, int channels, const float* table, Image& imag
   }
 }
 
+std::uint32_t be32(const unsigned char* p) {
+  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | std::uint32_t{p[3]};
+}
+
+void put_be32(std::vector<unsigned char>& out, std::uint32_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(static_cast<unsigned char>((v >> shift) & 0xFF));
+}
+
+// CRC-32 of PNG chunks (PNG specification, annex D: polynomial 0xEDB88320, reflected, inverted).
+std::uint32_t png_crc(const unsigned char* data, std::size_t n) {
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (std::size_t i = 0; i < n; ++i) {
+    c ^= data[i];
+    for (int k = 0; k < 8; ++k) c = (c & 1u) != 0 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+  }
+  return c ^ 0xFFFFFFFFu;
+}
+
+// A palette image (colour type 3) whose pixels index past its PLTE would make stb_image read palette
+// entries it never filled (uninitialised memory: the image would differ from run to run). The indices are
+// found by decoding a copy of the file whose PLTE is replaced by the identity palette (entry i = (i, 0, 0)),
+// so the red channel is the index; any index >= the file's palette size is an error. tRNS may not be longer
+// than PLTE (PNG specification 11.3.2.1).
+Result<bool> check_palette_indices(const fs::path& path, const std::vector<unsigned char>& bytes) {
+  if (bytes.size() < 33 || std::memcmp(bytes.data() + 12, "IHDR", 4) != 0) {
+    return true;  // stb reports it
+  }
+  const int bit_depth = bytes[24];
+  const int colour_type = bytes[25];
+  if (colour_type != 3 || bit_depth < 1 || bit_depth > 8) {
+    return true;
+  }
+  std::vector<unsigned char> copy(bytes.begin(), bytes.begin() + 8);
+  std::size_t entries = 0;
+  bool have_palette = false;
+  std::size_t at = 8;
+  while (at + 12 <= bytes.size()) {  // check_png_chunks has validated the chunk lengths
+    const std::uint32_t length = be32(bytes.data() + at);
+    const unsigned char* type = bytes.data() + at + 4;
+    if (std::memcmp(type, "PLTE", 4) == 0 && !have_palette) {
+      have_palette = true;
+      entries = length / 3;
+      const std::size_t identity = std::size_t{1} << bit_depth;
+      std::vector<unsigned char> chunk{'P', 'L', 'T', 'E'};
+      for (std::size_t i = 0; i < identity; ++i) chunk.insert(chunk.end(), {static_cast<unsigned char>(i), 0, 0});
+      put_be32(copy, static_cast<std::uint32_t>(chunk.size() - 4));
+      copy.insert(copy.end(), chunk.begin(), chunk.end());
+      put_be32(copy, png_crc(chunk.data(), chunk.size()));
+    } else {
+      if (std::memcmp(type, "tRNS", 4) == 0 && have_palette && length > entries) {
+        return read_error(path, "PNG tRNS chunk has " + std::to_string(length) + " entries, more than the " +
+                                    std::to_string(entries) + " of its palette");
+      }
+      copy.insert(copy.end(), bytes.begin() + static_cast<std::ptrdiff_t>(at),
+                  bytes.begin() + static_cast<std::ptrdiff_t>(at + 12 + length));
+    }
+    if (std::memcmp(type, "IEND", 4) == 0) {
+      break;
+    }
+    at += 12 + length;
+  }
+  if (!have_palette) {
+    return true;  // stb reports the missing PLTE
+  }
+  int w = 0;
+  int h = 0;
+  int n = 0;
+  std::unique_ptr<stbi_uc, StbiFree> indices(
+      stbi_load_from_memory(copy.data(), static_cast<int>(copy.size()), &w, &h, &n, 3));
+  if (!indices) {
+    return true;  // the real decode reports why
+  }
+  const std::size_t count = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  std::size_t largest = 0;
+  for (std::size_t i = 0; i < count; ++i) largest = std::max<std::size_t>(largest, indices.get()[3 * i]);
+  if (largest >= entries) {
+    return read_error(path, "PNG pixels index palette entry " + std::to_string(largest) + ", but its PLTE has " +
+                                std::to_string(entries) + " entries");
+  }
+  return true;
+}
+
 Result<Image> read_png(const fs::path& path, ReadInfo& info) {
   auto bytes = read_bytes(path);
   if (!bytes) {
@@ -465,6 +618,16 @@ Result<Image> read_png(const fs::path& path, ReadInfo& info) {
   const bool sixteen = stbi_is_16_bit_from_memory(bytes->data(), size) != 0;
   if (stbi_info_from_memory(bytes->data(), size, &w, &h, &n) == 0 || n < 1 || n > 4) {
     return read_error(path, "unsupported PNG channel count " + std::to_string(n));
+  }
+  // The image, stb's samples and its inflated scan lines (about as large as the samples).
+  const auto pixels_count = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
+  if (auto ok = check_budget(path, pixels_count * (bytes_per_pixel + 2ULL * static_cast<std::uint64_t>(n) * (sixteen ? 2 : 1)),
+                             "decoding its " + std::to_string(w) + " x " + std::to_string(h) + " pixels");
+      !ok) {
+    return ok.error();
+  }
+  if (auto ok = check_palette_indices(path, *bytes); !ok) {
+    return ok.error();
   }
   Image image;
   if (sixteen) {
@@ -522,10 +685,73 @@ Result<std::vector<char>> encode_png(const Image& image, const fs::path& path, d
 
 // ---------------------------------------------------------------------------------------------- atomic write
 
+// Signals that end a process by default (SIGINT, SIGTERM, SIGHUP) are held while any atomic write is in
+// progress, in any thread, and raised again when the last one is done: Ctrl-C then lands after the rename
+// (or the temporary's removal), never between, so it leaves neither a temporary nor a lost output behind.
+// A program's own handler (the render command's) is restored first, so it sees the signal as usual.
+std::mutex g_hold_mutex;
+int g_hold_depth = 0;
+constexpr int held_signals[3] = {SIGINT, SIGTERM, SIGHUP};
+struct sigaction g_saved_actions[3];
+volatile std::sig_atomic_t g_held_signal = 0;
+
+extern "C" void hold_signal(int sig) { g_held_signal = sig; }
+
+class SignalHold {
+ public:
+  SignalHold() {
+    const std::lock_guard<std::mutex> lock(g_hold_mutex);
+    if (g_hold_depth++ == 0) {
+      g_held_signal = 0;
+      struct sigaction hold {};
+      hold.sa_handler = hold_signal;
+      sigemptyset(&hold.sa_mask);
+      for (int i = 0; i < 3; ++i) ::sigaction(held_signals[i], &hold, &g_saved_actions[i]);
+    }
+  }
+  ~SignalHold() {
+    const std::lock_guard<std::mutex> lock(g_hold_mutex);
+    if (--g_hold_depth == 0) {
+      for (int i = 0; i < 3; ++i) ::sigaction(held_signals[i], &g_saved_actions[i], nullptr);
+      const int sig = g_held_signal;
+      g_held_signal = 0;
+      if (sig != 0) std::raise(sig);
+    }
+  }
+  SignalHold(const SignalHold&) = delete;
+  SignalHold& operator=(const SignalHold&) = delete;
+};
+
+// Removes temporaries of our own naming (".NAME.tmp-PID-...") beside `target` whose process is gone: what a
+// kill -9 or a power cut during an earlier write left behind. Those of live processes are theirs.
+void remove_stale_temporaries(const fs::path& target) {
+  const std::string prefix = "." + target.filename().string() + ".tmp-";
+  std::error_code ec;
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) {
+      continue;
+    }
+    long long pid = 0;
+    const char* first = name.data() + prefix.size();
+    const auto [p, err] = std::from_chars(first, name.data() + name.size(), pid);
+    if (err != std::errc() || p == first || *p != '-' || pid <= 0 || pid > INT_MAX) {
+      continue;
+    }
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+      std::error_code remove_ec;
+      fs::remove(it->path(), remove_ec);
+    }
+  }
+}
+
 // Writes `bytes` to a new temporary file beside `target` (created exclusively, flushed with fsync), then
 // renames it over `target`. On any failure the temporary is removed and `target` is untouched. `who` starts
-// the error message.
+// the error message. Signals are held meanwhile (SignalHold).
 Result<bool> write_atomically(const fs::path& target, const std::vector<char>& bytes, const char* who) {
+  const SignalHold hold;
+  remove_stale_temporaries(target);
   static std::atomic<unsigned> counter{0};
   const auto ticks = static_cast<unsigned long long>(std::chrono::steady_clock::now().time_since_epoch().count());
   const std::string tmp_name = "." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +

@@ -12,13 +12,21 @@
 //   texels outside the data window are 0, data outside the display window is cropped.
 // - NaN and +-Inf values are replaced by 0 and counted in ReadInfo::nonfinite_repaired; negative values are
 //   kept as they are and counted in ReadInfo::negative_values.
-// - Every failure (missing, empty, truncated or corrupt file, unknown extension, zero or too large size) is
-//   an Error whose one-line message names the file. Nothing throws, nothing prints.
+// - Every failure (missing, empty, truncated or corrupt file, unknown extension, zero or too large size,
+//   over the memory budget) is an Error whose one-line message names the file. Nothing throws, nothing
+//   prints.
 // - Writing is atomic (write_file_atomically): a temporary file in the target's directory, renamed over the
 //   target only when complete; on failure the temporary is removed and an existing target is untouched.
+//   SIGINT, SIGTERM and SIGHUP are held while a write is in progress and raised again after it, so a signal
+//   never leaves a half-written file or a temporary behind; temporaries of our naming left by a process
+//   that no longer exists (kill -9) are removed at the next write beside them.
+// - Memory: a read allocates at most image_read_budget_bytes (checked from the header, before allocating);
+//   an EXR's buffers follow its data window, read in strips, not its display window.
+// - PNG palette images whose pixels index past the palette are errors (they would read undefined entries).
 // - Different files may be read and written from different threads at once.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -28,8 +36,15 @@
 
 namespace shadelab {
 
-// The largest image read_image accepts, in pixels (16384 x 8192: 1.5 GiB of floats).
+// The largest image read_image accepts, in pixels (16384 x 8192), and along either side.
 inline constexpr long long max_image_pixels = 16384LL * 8192LL;
+inline constexpr long long max_image_side = 65536;
+// The memory one read_image may allocate: the image (12 bytes a pixel) plus the decoder's buffers (PNG
+// samples, EXR strips, the palette check). Checked from the header, before allocating; beyond it the read
+// is an error naming the file. 1 GiB: an 8192 x 4096 HDRI takes 384 MiB; 16384 x 8192 (1.5 GiB) is refused.
+inline constexpr std::uint64_t image_read_budget_bytes = 1ULL << 30;
+// EXR tiles larger than this on a side are refused (OpenEXR allocates a tile buffer from the header).
+inline constexpr long long max_exr_tile_side = 4096;
 
 // What read_image found in the file, beyond the pixels.
 struct ReadInfo {

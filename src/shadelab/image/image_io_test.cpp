@@ -4,6 +4,7 @@
 #include "shadelab/image/image_io.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +20,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -934,6 +937,151 @@ TEST_F(ImageIo, WriteFileAtomicallyWritesExactlyTheBytes) {
   expect_error_naming(failed, missing);
   EXPECT_NE(failed.error().message.find("write_file_atomically"), std::string::npos) << failed.error().message;
   EXPECT_EQ(listing(), (std::vector<std::string>{"empty.bin", "f.bin"}));
+}
+
+
+// --------------------------------------------------------------------------- bad input that cost memory
+
+// issue 16, 2: a 6.7 KB EXR whose display window is 16384 x 8192 made the reader allocate 1.6 GB before any
+// pixel was checked. The display window alone needs 1.5 GiB of floats: over the 1 GiB budget, an error.
+TEST_F(ImageIo, ExrDisplayWindowBeyondTheMemoryBudgetIsAnError) {
+  RawExr exr;
+  exr.channels = {"R"};
+  exr.display_window[2] = 16383;
+  exr.display_window[3] = 8191;
+  exr.value = channel_value;  // data window: the one pixel (0, 0)
+  const fs::path p = path("wide.exr");
+  write_file(p, encode_raw_exr(exr));
+  ASSERT_LT(fs::file_size(p), 1000u);
+  const Result<Image> image = read_image(p);
+  expect_error_naming(image, p);
+  EXPECT_NE(image.error().message.find("memory budget"), std::string::npos) << image.error().message;
+  // The budget is stated in one place and the check agrees with it.
+  EXPECT_LT(image_read_budget_bytes, 16384ULL * 8192ULL * 12ULL);
+}
+
+// The buffers follow the data window: a data window wider than the display window (overscan) is read in
+// strips of the overlapping rows. 8192 x 300 data around a 4096 x 200 display: two strips of 16 MiB.
+TEST_F(ImageIo, ExrOverscanIsReadInStripsOfTheOverlap) {
+  RawExr exr;
+  exr.channels = {"R"};
+  const int display[4] = {0, 0, 4095, 199};
+  const int data[4] = {-2048, -50, 6143, 249};
+  std::copy(display, display + 4, exr.display_window);
+  std::copy(data, data + 4, exr.data_window);
+  exr.value = [](const std::string&, int x, int y) { return static_cast<float>(x) + 10000.0f * static_cast<float>(y); };
+  const fs::path p = path("overscan_strips.exr");
+  write_file(p, encode_raw_exr(exr));
+  const Result<Image> image = read_image(p);
+  ASSERT_TRUE(image) << image.error().message;
+  ASSERT_EQ(image->width, 4096);
+  ASSERT_EQ(image->height, 200);
+  int wrong = 0;
+  for (int y = 0; y < 200; ++y) {
+    for (int x = 0; x < 4096; ++x) {
+      wrong += image->at(x, y).r == static_cast<double>(static_cast<float>(x) + 10000.0f * static_cast<float>(y)) ? 0 : 1;
+      wrong += image->at(x, y).g == 0.0 ? 0 : 1;
+    }
+  }
+  EXPECT_EQ(wrong, 0);
+}
+
+// A data window that misses the display window entirely: a black image, nothing read.
+TEST_F(ImageIo, ExrDataWindowOutsideTheDisplayWindowIsBlack) {
+  RawExr exr;
+  exr.channels = {"G"};
+  const int display[4] = {0, 0, 15, 7};
+  const int data[4] = {100, 100, 101, 101};
+  std::copy(display, display + 4, exr.display_window);
+  std::copy(data, data + 4, exr.data_window);
+  exr.value = channel_value;
+  const fs::path p = path("outside.exr");
+  write_file(p, encode_raw_exr(exr));
+  const Result<Image> image = read_image(p);
+  ASSERT_TRUE(image) << image.error().message;
+  EXPECT_EQ(*std::max_element(image->data.begin(), image->data.end()), 0.0f);
+}
+
+// A palette PNG (colour type 3) with its indices, one byte each.
+std::vector<unsigned char> encode_palette_png(int w, int h, const std::vector<unsigned char>& indices,
+                                              const std::vector<unsigned char>& palette_rgb) {
+  std::vector<std::uint16_t> samples(indices.begin(), indices.end());
+  // encode_raw_png's grey 8-bit layout is the palette layout (one byte per pixel): patch the colour type
+  // and add PLTE before IDAT.
+  std::vector<unsigned char> grey = encode_raw_png(w, h, 8, 0, samples);
+  std::vector<unsigned char> out(grey.begin(), grey.begin() + 8);
+  std::vector<unsigned char> ihdr(grey.begin() + 16, grey.begin() + 29);
+  ihdr[9] = 3;
+  put_png_chunk(out, "IHDR", ihdr);
+  put_png_chunk(out, "PLTE", palette_rgb);
+  out.insert(out.end(), grey.begin() + 33, grey.end());  // IDAT and IEND as they were
+  return out;
+}
+
+// issue 16, 3: a palette PNG whose pixels index past its PLTE read uninitialised palette entries (valgrind),
+// so the image differed from run to run. Such a file is an error; one that stays inside its palette decodes.
+TEST_F(ImageIo, PngPaletteIndexPastThePaletteIsAnError) {
+  const std::vector<unsigned char> palette = {255, 0, 0, 0, 255, 0};  // two entries: red, green
+  const fs::path good = path("palette_ok.png");
+  write_file(good, encode_palette_png(3, 2, {0, 1, 0, 1, 1, 0}, palette));
+  const Result<Image> ok = read_image(good);
+  ASSERT_TRUE(ok) << ok.error().message;
+  EXPECT_EQ(ok->at(0, 0).r, 1.0);
+  EXPECT_EQ(ok->at(1, 0).g, 1.0);
+  EXPECT_EQ(ok->at(1, 0).r, 0.0);
+
+  const fs::path bad = path("palette_past.png");
+  write_file(bad, encode_palette_png(3, 2, {0, 1, 0, 1, 200, 0}, palette));
+  const Result<Image> image = read_image(bad);
+  expect_error_naming(image, bad);
+  EXPECT_NE(image.error().message.find("palette entry 200"), std::string::npos) << image.error().message;
+}
+
+// issue 16, 4: kill -9 during a write left ".x.exr.tmp-*" behind. The next write beside it removes
+// temporaries of our naming whose process is gone, and leaves those of live processes and other files alone.
+TEST_F(ImageIo, StaleTemporariesOfDeadProcessesAreRemoved) {
+  // A pid that is not running: the largest pid Linux hands out is 4194304.
+  const std::string dead = ".x.exr.tmp-4194999-0-1";
+  const std::string live = ".x.exr.tmp-" + std::to_string(::getpid()) + "-77-1";
+  const std::string other = ".x.exr.tmp-notapid";
+  const std::string other_file = ".y.exr.tmp-4194999-0-1";
+  for (const auto& name : {dead, live, other, other_file}) write_file(path(name), {1, 2, 3});
+  ASSERT_TRUE(write_image(Image(2, 2), path("x.exr")));
+  EXPECT_FALSE(fs::exists(path(dead)));
+  EXPECT_TRUE(fs::exists(path(live)));
+  EXPECT_TRUE(fs::exists(path(other)));
+  EXPECT_TRUE(fs::exists(path(other_file)));
+}
+
+// issue 16, 4: Ctrl-C while the output was being written lost the image and left ".x.tmp-*" behind. A
+// child process with the default SIGINT action writes 256 MiB; the parent interrupts it once the temporary
+// exists. The signal is held until the rename, then ends the child: the file is whole, no temporary is left.
+TEST_F(ImageIo, SigintDuringAWriteEndsTheProcessOnlyAfterTheRename) {
+  const fs::path target = path("big.bin");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::signal(SIGINT, SIG_DFL);
+    const std::vector<char> big(256u << 20, 'x');
+    const Result<bool> ok = write_file_atomically(target, big);
+    ::_exit(ok ? 0 : 1);
+  }
+  // Wait for the temporary to appear, then interrupt.
+  bool seen = false;
+  for (int i = 0; i < 20000 && !seen; ++i) {
+    for (const auto& entry : fs::directory_iterator(m_dir)) {
+      seen = seen || entry.path().filename().string().rfind(".big.bin.tmp-", 0) == 0;
+    }
+    if (!seen) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  ::kill(child, SIGINT);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(seen) << "the child never created its temporary";
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "status " << status;
+  ASSERT_TRUE(fs::exists(target));
+  EXPECT_EQ(fs::file_size(target), 256u << 20);
+  EXPECT_EQ(listing(), std::vector<std::string>{"big.bin"});
 }
 
 }  // namespace

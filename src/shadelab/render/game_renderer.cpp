@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -13,11 +14,14 @@
 #include "shadelab/envmap/irradiance.h"
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/envmap/sh.h"
+#include "shadelab/kernels/kernels.h"
 #include "shadelab/brdf/microfacet.h"
 #include "shadelab/brdf/wrapped_diffuse.h"
 #include "shadelab/render/accel.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/materials.h"
+#include "shadelab/render/threads.h"
+#include "shadelab/scene/limits.h"
 #include "shadelab/sampling/rng.h"
 
 namespace shadelab {
@@ -55,6 +59,13 @@ class GameShader {
     if (auto ok = m_materials.prepare(m_scene); !ok) return ok.error();
     // Punctual lights as the engine sees them: radiometric E_perp here, the game colour is E_perp / pi.
     for (const auto& l : m_scene.lights) {
+      const auto* d = std::get_if<DirectionalLight>(&l);
+      if (d != nullptr && (d->game_sh || m_options.directional_in_sh) && m_options.diffuse == GameAmbient::sh9) {
+        // D3DX-style: the delta pi c delta(w - d) projected and scaled by 16/17 (sh.h), c = E_perp / pi.
+        m_sh_lights += sh9_directional_light(d->to_light, d->irradiance * inv_pi, true);
+        m_has_sh_lights = true;
+        continue;
+      }
       if (std::holds_alternative<DirectionalLight>(l) || std::holds_alternative<PointLight>(l) ||
           std::holds_alternative<SpotLight>(l)) {
         m_punctual.push_back(l);
@@ -83,6 +94,7 @@ class GameShader {
         m_specular = std::move(chain).value();
       }
     }
+    m_sh += m_sh_lights;  // the environment's coefficients (zero without one) and the D3DX-style lights
     // Per material: Phong exponent and the specular lobe's directional albedo over cos(theta_o).
     for (std::size_t i = 0; i < m_scene.materials.size(); ++i) {
       const Material& m = m_scene.materials[i];
@@ -152,12 +164,14 @@ class GameShader {
           if (m_accel.occluded(shadow)) continue;
         }
         const Rgb colour_game = in.irradiance_perp * inv_pi;  // the game unit: E_perp = pi x colour
-        // The game shading equation: L = pi f c cos (drop_pi: the bug of forgetting the pi).
-        const double unit = m_options.drop_pi ? 1.0 : pi;
-        l += f->eval(wi, wo) * colour_game * (unit * wi.z);
+        // The game shading equation L = pi f c cos, the kernel kernels/game_shading.sl; drop_pi is the bug of
+        // forgetting the pi: the game colour used as if it were the irradiance.
+        const Rgb fr = f->eval(wi, wo);
+        l += m_options.drop_pi ? kernel::punctual_radiometric(fr, colour_game, wi.z)
+                               : kernel::punctual_game(fr, colour_game, wi.z);
       }
     }
-    if (m_env.has_light()) {
+    if (m_env.has_light() || m_has_sh_lights) {
       const Vec3 n = sf.frame.n;
       if (m_options.diffuse != GameAmbient::none) {
         Rgb e_over_pi;
@@ -168,6 +182,9 @@ class GameShader {
         }
         l += f->diffuse_albedo() * e_over_pi;
       }
+    }
+    if (m_env.has_light()) {
+      const Vec3 n = sf.frame.n;
       if (m_options.specular_ambient && info.exponent > 0.0 && !m_specular.levels.empty()) {
         double n_phong = info.exponent;
         const Material& m = m_scene.materials[static_cast<std::size_t>(hit.material)];
@@ -217,6 +234,8 @@ class GameShader {
   MaterialSet m_materials;
   std::vector<SceneLight> m_punctual;
   Sh9 m_sh;
+  Sh9 m_sh_lights;  // directional lights added D3DX-style (game_sh)
+  bool m_has_sh_lights = false;
   CubeMap m_irradiance;
   PrefilteredCube m_specular;
   std::vector<MaterialInfo> m_info;
@@ -226,6 +245,7 @@ class GameShader {
 
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (auto limits = check_scene_limits(scene); !limits) return limits.error();
   GameShader shader(scene, options);
   if (auto ok = shader.prepare(); !ok) return ok.error();
   const int w = scene.camera.width;
@@ -239,7 +259,8 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
   RenderResult result;
   result.beauty = Image(w, h);
   const int threads = options.threads >= 0 ? options.threads : scene.settings.threads;
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  tbb::task_arena arena(arena_threads(threads));
+  std::atomic<std::uint64_t> nonfinite{0};
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
       for (int y = r.rows().begin(); y != r.rows().end(); ++y) {
@@ -252,7 +273,9 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
               const double py = y + (j + 0.5) / spp_side;
               const double sx = (2.0 * px / w - 1.0) * tan_half * aspect;
               const double sy = (1.0 - 2.0 * py / h) * tan_half;
-              sum += shader.shade(Ray{scene.camera.position, normalize(forward + right * sx + up * sy)});
+              const Rgb l = shader.shade(Ray{scene.camera.position, normalize(forward + right * sx + up * sy)});
+              if (!is_finite(l)) nonfinite.fetch_add(1, std::memory_order_relaxed);
+              sum += l;
             }
           }
           result.beauty.set(x, y, sum / (spp_side * spp_side));
@@ -261,6 +284,7 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
     });
   });
   result.stats.spp_done = spp_side * spp_side;
+  result.stats.nonfinite_samples = nonfinite.load();
   result.stats.camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(spp_side * spp_side);
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;

@@ -13,6 +13,11 @@
 //     material's lobe width and the specular lobe's directional albedo rho_s (a per-material table over
 //     cos(theta_o), from the BRDF's own sampler, fixed seed);
 //   emission of the surface seen; the environment seen directly.
+// Directional lights marked game_sh (or all of them with directional_in_sh) are not shaded per pixel: each is
+// added to the SH9 coefficients as D3DXSHEvalDirectionalLight does (sh9_directional_light, scaled so a white
+// Lambert surface facing a light of game colour c shows exactly c), so they light the diffuse ambient only,
+// with the order-3 ringing of a delta (3c/34 at 90 degrees), and cast no shadow. With GameAmbient other than
+// sh9 there are no SH coefficients and they are shaded as punctual lights.
 // No interreflection, no area lights besides the point limit of sphere lights: these are the approximations
 // `shadelab report` measures against the reference.
 // `drop_pi` is a debug switch that forgets the pi of the game unit (L += f c cos): the tests use it to show
@@ -31,6 +36,7 @@ struct GameOptions {
   bool specular_ambient = true;
   bool punctual = true;
   bool drop_pi = false;   // debug: forget the pi of the game light unit
+  bool directional_in_sh = false;  // every directional light into the SH9 ambient, as if marked game_sh
   int spp = 4;            // antialiasing samples per pixel (stratified, deterministic)
   int threads = -1;       // -1: the scene's
   int environment_size = 64;  // face size the environment is baked at

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "shadelab/core/constants.h"
@@ -15,7 +16,9 @@
 #include "shadelab/render/accel.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/materials.h"
+#include "shadelab/render/threads.h"
 #include "shadelab/sampling/owen.h"
+#include "shadelab/scene/limits.h"
 #include "shadelab/sampling/warp.h"
 
 namespace shadelab {
@@ -449,11 +452,14 @@ struct CameraModel {
 
 }  // namespace
 
-Image image_from_sums(const std::vector<FixedRgb>& sums, int width, int height, std::uint64_t samples) {
+Image image_from_sums(const std::vector<FixedRgb>& sums, const std::vector<std::uint32_t>& nonfinite, int width, int height,
+                      std::uint64_t samples) {
   Image image(width, height);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      image.set(x, y, sums[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)].mean(samples));
+      const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+      const bool bad = !nonfinite.empty() && nonfinite[p] > 0;
+      image.set(x, y, bad ? Rgb::gray(std::numeric_limits<double>::quiet_NaN()) : sums[p].mean(samples));
     }
   }
   return image;
@@ -476,6 +482,7 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   const int max_depth = options.max_depth > 0 ? options.max_depth : scene.settings.max_depth;
   const int threads = options.threads >= 0 ? options.threads : scene.settings.threads;
   if (spp < 1) return make_error("render: samples per pixel must be >= 1");
+  if (auto limits = check_scene_limits(scene); !limits) return limits.error();
   const ShardSpec& shard = options.shard;
   if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count) {
     return make_error("render: shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) +
@@ -491,6 +498,7 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   RenderResult result;
   result.sums.assign(pixels, FixedRgb{});
+  result.nonfinite.assign(pixels, 0);
   std::vector<Rgb> albedo_sum(options.aovs ? pixels : 0);
   std::vector<Vec3> normal_first(options.aovs ? pixels : 0);
   std::vector<double> depth_first(options.aovs ? pixels : 0, 0.0);
@@ -514,7 +522,7 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   const int samples = end_sample - first_sample;
   // Passes of up to 8 samples: Ctrl-C and progress react within one pass.
   const int per_pass = std::clamp(samples / 32, 1, 8);
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  tbb::task_arena arena(arena_threads(threads));
   int done = first_sample;
   while (done < end_sample) {
     if (options.cancel != nullptr && options.cancel->load() && done > first_sample) {
@@ -555,7 +563,10 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
                   const PixelSampler sampler(pixel_seed[i], static_cast<std::uint32_t>(s), options.sampler);
                   FirstHit first;
                   const Rgb l = integrator.li(camera_rays[i], found[i], hits[i], sampler, counters, options.aovs ? &first : nullptr);
-                  if (!result.sums[pi_].add(l)) ++counters.nonfinite;
+                  if (!result.sums[pi_].add(l)) {
+                    ++counters.nonfinite;
+                    ++result.nonfinite[pi_];
+                  }
                   if (options.aovs) {
                     albedo_sum[pi_] += first.albedo;
                     if (s == 0) {
@@ -578,7 +589,7 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   result.sample_end = done;
   result.stats.render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_render).count();
   const auto rendered = static_cast<std::uint64_t>(done - first_sample);
-  result.beauty = image_from_sums(result.sums, w, h, rendered);
+  result.beauty = image_from_sums(result.sums, result.nonfinite, w, h, rendered);
   if (options.aovs) {
     result.albedo = Image(w, h);
     result.normal = Image(w, h);

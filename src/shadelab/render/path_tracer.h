@@ -75,7 +75,9 @@ struct RenderStats {
   double seconds = 0.0;         // the whole call: preparation (BVH, light tables) and sampling
   double render_seconds = 0.0;  // sampling only (what Cycles calls render time without synchronisation)
   bool cancelled = false;
-  // Samples whose radiance was NaN or infinite: they add nothing to the exact sums (fixed_sum.h).
+  // Samples whose radiance was NaN or infinite: a render that has any is wrong, and the CLI says so and exits
+  // with 1 (docs/cli.md). They cannot enter the exact sums (fixed_sum.h): they are counted per pixel
+  // (RenderResult::nonfinite) and a pixel with any is NaN in the image, so they can be found.
   std::uint64_t nonfinite_samples = 0;
 };
 
@@ -83,6 +85,7 @@ struct RenderResult {
   // Exact per-pixel sums of the samples rendered (row-major; zero for pixels a tile shard does not cover):
   // beauty = sums / samples. What a shard writes and `shadelab merge` adds.
   std::vector<FixedRgb> sums;
+  std::vector<std::uint32_t> nonfinite;  // per pixel, the samples that were NaN or infinite (not in sums)
   int sample_begin = 0, sample_end = 0;  // the sample indices rendered of every covered pixel
   Image beauty;  // linear radiance, W m^-2 sr^-1
   Image albedo;  // first-hit directional albedo (one-sample estimates averaged), if aovs
@@ -91,9 +94,11 @@ struct RenderResult {
   RenderStats stats;
 };
 
-// The image of exact per-pixel sums (row-major): sums / samples, then rounded to float. render_scene and the
-// shard merge both produce their images with it.
-Image image_from_sums(const std::vector<FixedRgb>& sums, int width, int height, std::uint64_t samples);
+// The image of exact per-pixel sums (row-major): sums / samples, then rounded to float; NaN where the pixel had
+// a non-finite sample (nonfinite[p] > 0; nonfinite may be empty: none). render_scene and the shard merge both
+// produce their images with it.
+Image image_from_sums(const std::vector<FixedRgb>& sums, const std::vector<std::uint32_t>& nonfinite, int width, int height,
+                      std::uint64_t samples);
 
 // Errors: a material whose model cannot take a texture's parameter, or an invalid setting.
 Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& options = {});

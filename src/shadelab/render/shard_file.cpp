@@ -165,7 +165,7 @@ std::vector<std::pair<std::string, std::string>> ShardInfo::render_identity() co
 
 ShardSpec ShardInfo::spec() const { return {index, count, split == "tiles" ? ShardSplit::tiles : ShardSplit::samples}; }
 
-ShardInfo make_shard_info(const Scene& scene, const RenderOptions& options, int spp, int max_depth, const RenderResult& result) {
+ShardInfo make_shard_info(const Scene& scene, const RenderOptions& options, int spp, int max_depth) {
   ShardInfo s;
   s.scene_hash = scene_fingerprint(scene);
   s.scene = scene.source;
@@ -179,15 +179,20 @@ ShardInfo make_shard_info(const Scene& scene, const RenderOptions& options, int 
   s.split = options.shard.split == ShardSplit::tiles ? "tiles" : "samples";
   s.index = options.shard.index;
   s.count = options.shard.count;
-  s.sample_begin = result.sample_begin;
-  s.sample_end = result.sample_end;
-  s.nonfinite_samples = result.stats.nonfinite_samples;
+  const auto [b, e] = shard_sample_range(spp, options.shard);
+  s.sample_begin = b;
+  s.sample_end = e;
   return s;
+}
+
+bool same_shard(const ShardInfo& a, const ShardInfo& b) {
+  return a.render_identity() == b.render_identity() && a.index == b.index && a.sample_begin == b.sample_begin &&
+         a.sample_end == b.sample_end;
 }
 
 Result<bool> write_shard(const fs::path& path, const ShardInfo& info, const RenderResult& result) {
   const auto pixels = static_cast<std::size_t>(info.width) * static_cast<std::size_t>(info.height);
-  if (result.sums.size() != pixels || result.beauty.pixel_count() != pixels) {
+  if (result.sums.size() != pixels || result.nonfinite.size() != pixels || result.beauty.pixel_count() != pixels) {
     return make_error("write_shard: " + file_error(path, "the render has not the image size of its description").message);
   }
   std::vector<std::uint32_t> words(pixels * 12);
@@ -203,6 +208,10 @@ Result<bool> write_shard(const fs::path& path, const ShardInfo& info, const Rend
     header.insert(shard_attribute, Imf::StringAttribute(to_json(info).dump()));
     Imf::FrameBuffer fb;
     auto* beauty = const_cast<float*>(result.beauty.data.data());  // OpenEXR's slices are non-const; only read
+    auto* nonfinite = const_cast<std::uint32_t*>(result.nonfinite.data());
+    header.channels().insert("nonfinite", Imf::Channel(Imf::UINT));
+    fb.insert("nonfinite", Imf::Slice(Imf::UINT, reinterpret_cast<char*>(nonfinite), sizeof(std::uint32_t),
+                                      sizeof(std::uint32_t) * static_cast<std::size_t>(info.width)));
     for (int c = 0; c < 3; ++c) {
       header.channels().insert(channel_colour[c], Imf::Channel(Imf::FLOAT));
       fb.insert(channel_colour[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(beauty + c), 3 * sizeof(float),
@@ -265,7 +274,7 @@ Result<ShardInfo> read_shard_info(const fs::path& path) {
     if (s.count < 1 || s.index < 0 || s.index >= s.count) {
       return file_error(path, "shard " + std::to_string(s.index) + "/" + std::to_string(s.count) + " is out of range");
     }
-    if (s.spp < 1 || s.width < 1 || s.height < 1 || static_cast<long long>(s.width) * s.height > max_image_pixels) {
+    if (s.spp < 1 || s.spp > 1000000 || s.width < 1 || s.height < 1 || static_cast<long long>(s.width) * s.height > max_image_pixels) {
       return file_error(path, "spp, width or height out of range");
     }
     const auto [b, e] = shard_sample_range(s.spp, s.spec());
@@ -288,6 +297,9 @@ Result<ShardInfo> read_shard_info(const fs::path& path) {
         if (ch == nullptr || ch->type != Imf::UINT) return file_error(path, "channel " + sum_channel(c, k) + " missing or not uint");
       }
     }
+    if (const Imf::Channel* ch = header.channels().findChannel("nonfinite"); ch == nullptr || ch->type != Imf::UINT) {
+      return file_error(path, "channel nonfinite missing or not uint");
+    }
     return s;
   } catch (const std::exception& e) {
     std::string why = e.what();
@@ -296,7 +308,7 @@ Result<ShardInfo> read_shard_info(const fs::path& path) {
   }
 }
 
-Result<std::vector<FixedRgb>> read_shard_sums(const fs::path& path, const ShardInfo& info) {
+Result<ShardSums> read_shard_sums(const fs::path& path, const ShardInfo& info) {
   const auto pixels = static_cast<std::size_t>(info.width) * static_cast<std::size_t>(info.height);
   try {
     std::vector<std::uint32_t> words(pixels * 12);
@@ -308,15 +320,34 @@ Result<std::vector<FixedRgb>> read_shard_sums(const fs::path& path, const ShardI
                                                 12 * sizeof(std::uint32_t) * static_cast<std::size_t>(info.width)));
       }
     }
+    ShardSums out;
+    out.nonfinite.assign(pixels, 0);
+    fb.insert("nonfinite", Imf::Slice(Imf::UINT, reinterpret_cast<char*>(out.nonfinite.data()), sizeof(std::uint32_t),
+                                      sizeof(std::uint32_t) * static_cast<std::size_t>(info.width)));
     in.setFrameBuffer(fb);
     in.readPixels(0, info.height - 1);
-    std::vector<FixedRgb> sums(pixels);
+    out.sums.resize(pixels);
+    std::uint64_t nonfinite = 0;
+    // No sample adds more than 2^(52 + 40) in magnitude (fixed_sum.h): a larger sum is not a render's, and the
+    // bound keeps the merge's 128-bit additions far from overflow (spp <= 10^6 < 2^20 samples in all).
+    const UInt128 bound = static_cast<UInt128>(info.sample_end - info.sample_begin) << 92u;
     for (std::size_t p = 0; p < pixels; ++p) {
+      nonfinite += out.nonfinite[p];
       for (std::size_t c = 0; c < 3; ++c) {
-        sums[p].c[c] = from_words({words[p * 12 + 4 * c], words[p * 12 + 4 * c + 1], words[p * 12 + 4 * c + 2], words[p * 12 + 4 * c + 3]});
+        const Int128 v = from_words({words[p * 12 + 4 * c], words[p * 12 + 4 * c + 1], words[p * 12 + 4 * c + 2], words[p * 12 + 4 * c + 3]});
+        const UInt128 magnitude = v < 0 ? static_cast<UInt128>(0) - static_cast<UInt128>(v) : static_cast<UInt128>(v);
+        if (magnitude > bound) {
+          return file_error(path, "pixel (" + std::to_string(p % static_cast<std::size_t>(info.width)) + ", " +
+                                      std::to_string(p / static_cast<std::size_t>(info.width)) + ") has a sum larger than its samples can give (an altered part)");
+        }
+        out.sums[p].c[c] = v;
       }
     }
-    return sums;
+    if (nonfinite != info.nonfinite_samples) {
+      return file_error(path, "the nonfinite channel adds up to " + std::to_string(nonfinite) + ", the header says " +
+                                  std::to_string(info.nonfinite_samples) + " (an altered part)");
+    }
+    return out;
   } catch (const std::exception& e) {
     std::string why = e.what();
     std::replace(why.begin(), why.end(), '\n', ' ');
@@ -369,18 +400,22 @@ Result<MergedRender> merge_shards(const std::vector<fs::path>& parts, const std:
   merged.status = *status;
   RenderResult& r = merged.result;
   r.sums.assign(static_cast<std::size_t>(first.width) * static_cast<std::size_t>(first.height), FixedRgb{});
+  r.nonfinite.assign(r.sums.size(), 0);
   for (std::size_t k = 0; k < parts.size(); ++k) {
     auto info = read_shard_info(parts[k]);  // the file may have changed since check_shards
     if (!info) return info.error();
     if (info->render_identity() != first.render_identity()) return file_error(parts[k], "changed while merging");
     auto sums = read_shard_sums(parts[k], *info);
     if (!sums) return sums.error();
-    for (std::size_t p = 0; p < r.sums.size(); ++p) r.sums[p] += (*sums)[p];
+    for (std::size_t p = 0; p < r.sums.size(); ++p) {
+      r.sums[p] += sums->sums[p];
+      r.nonfinite[p] += sums->nonfinite[p];
+    }
     if (progress) progress(static_cast<double>(k + 1) / static_cast<double>(parts.size()));
   }
   r.sample_begin = 0;
   r.sample_end = first.spp;
-  r.beauty = image_from_sums(r.sums, first.width, first.height, static_cast<std::uint64_t>(first.spp));
+  r.beauty = image_from_sums(r.sums, r.nonfinite, first.width, first.height, static_cast<std::uint64_t>(first.spp));
   r.stats.spp_done = first.spp;
   r.stats.nonfinite_samples = status->nonfinite_samples;
   return merged;

@@ -6,6 +6,7 @@
 //   nothing, so that any EXR viewer shows the part;
 // - the channels sum.R.w0 .. sum.B.w3 (uint): the exact per-pixel sums (fixed_sum.h), each 128-bit channel
 //   sum as four 32-bit words, least significant first, two's complement;
+// - the channel nonfinite (uint): per pixel, the samples that were NaN or infinite (not in the sums);
 // - the header attribute "shadelab.shard" (string): JSON with everything a merge must check (ShardInfo).
 // The merge adds the parts' integer sums (exact, so the order of the parts does not matter) and divides by
 // the scene's spp once: bit for bit the image `shadelab render` writes for the same scene on one machine.
@@ -57,8 +58,11 @@ struct ShardInfo {
   ShardSpec spec() const;
 };
 
-// The shard's description for a finished render_scene result with options.shard = spec.
-ShardInfo make_shard_info(const Scene& scene, const RenderOptions& options, int spp, int max_depth, const RenderResult& result);
+// The description of the shard options.shard of the scene at spp and max_depth (the resolved values); a
+// finished render's nonfinite count is set by the caller. A resumed run compares an existing part with it.
+ShardInfo make_shard_info(const Scene& scene, const RenderOptions& options, int spp, int max_depth);
+// Whether two descriptions are of the same shard of the same render (identity, index and sample range).
+bool same_shard(const ShardInfo& a, const ShardInfo& b);
 
 // Writes the part atomically (temporary file, then rename).
 Result<bool> write_shard(const std::filesystem::path& path, const ShardInfo& info, const RenderResult& result);
@@ -66,8 +70,12 @@ Result<bool> write_shard(const std::filesystem::path& path, const ShardInfo& inf
 // Reads and checks a part's header (a shadelab shard of this format, consistent fields, the sum channels
 // present as uint, the data window the whole image). Errors name the file.
 Result<ShardInfo> read_shard_info(const std::filesystem::path& path);
-// Reads the part's exact sums (after read_shard_info succeeded on it).
-Result<std::vector<FixedRgb>> read_shard_sums(const std::filesystem::path& path, const ShardInfo& info);
+// Reads the part's exact sums and non-finite counts (after read_shard_info succeeded on it).
+struct ShardSums {
+  std::vector<FixedRgb> sums;
+  std::vector<std::uint32_t> nonfinite;
+};
+Result<ShardSums> read_shard_sums(const std::filesystem::path& path, const ShardInfo& info);
 
 struct MergeStatus {
   ShardInfo first;               // the render the parts belong to
@@ -80,7 +88,7 @@ struct MergeStatus {
 Result<MergeStatus> check_shards(const std::vector<std::filesystem::path>& parts);
 
 // check_shards, an Error naming the first missing shard, then the sum of the parts' sums and the image:
-// beauty = image_from_sums(sums, spp), the function render_scene uses.
+// beauty = image_from_sums(sums, nonfinite, spp), the function render_scene uses.
 struct MergedRender {
   MergeStatus status;
   RenderResult result;  // sums, beauty, stats.spp_done = spp, stats.nonfinite_samples

@@ -10,27 +10,105 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <fstream>
+#include <map>
+#include <new>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "shadelab/core/constants.h"
+#include "shadelab/core/text.h"
+#include "shadelab/scene/limits.h"
 
 namespace shadelab {
 
 namespace {
 
 std::string one_line(std::string text) {
-  // Library messages may hold several lines; the scene format promises one.
+  // Library messages may hold several lines; the scene format promises one, printable and short (a glTF
+  // syntax error quotes the JSON around it, base64 buffers included).
   std::string out;
   for (char c : text) {
     if (c == '\r') continue;
     out += c == '\n' ? std::string("; ") : std::string(1, c);
   }
   while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
-  return out;
+  return printable(out, max_library_bytes);
+}
+
+// A mesh file or a file it names: it must be a regular file of at most `limit` bytes. Returns "" or why not.
+std::string check_file(const std::filesystem::path& path, std::uintmax_t limit) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) return "no such file";
+  if (!std::filesystem::is_regular_file(status)) return "not a regular file";
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return "cannot read its size: " + ec.message();
+  if (size > limit) return "it has " + std::to_string(size) + " bytes, more than the limit of " + std::to_string(limit);
+  return {};
+}
+
+// Is `path` inside the folder tree of `root` (both resolved through symbolic links and "..")?
+bool inside_tree(const std::filesystem::path& root, const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::filesystem::path r = std::filesystem::weakly_canonical(root, ec);
+  if (ec) return false;
+  const std::filesystem::path p = std::filesystem::weakly_canonical(path, ec);
+  if (ec) return false;
+  auto ri = r.begin();
+  auto pi = p.begin();
+  for (; ri != r.end(); ++ri, ++pi) {
+    if (ri->empty()) continue;  // a trailing separator
+    if (pi == p.end() || *pi != *ri) return false;
+  }
+  return true;
+}
+
+// The whole file, after check_file; "" when it cannot be read (the caller says why).
+bool read_whole(const std::filesystem::path& path, std::string& out) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return false;
+  const std::streamoff size = in.tellg();
+  if (size < 0) return false;
+  out.resize(static_cast<std::size_t>(size));
+  in.seekg(0);
+  return static_cast<bool>(in.read(out.data(), size));
+}
+
+Result<std::string> read_text(const std::filesystem::path& path, std::uintmax_t limit) {
+  if (const std::string why = check_file(path, limit); !why.empty()) return make_error(why);
+  std::string text;
+  if (!read_whole(path, text)) return make_error("cannot read the file");
+  return text;
+}
+
+// The nesting depth of JSON text ([ and { outside strings), counted only up to `limit` + 1.
+std::size_t json_depth(std::string_view text, std::size_t limit) {
+  std::size_t depth = 0;
+  std::size_t deepest = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+      if (deepest > limit) return deepest;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
 }
 
 Error mesh_error(const std::filesystem::path& path, const std::string& message) {
@@ -120,18 +198,51 @@ struct CornerHash {
   }
 };
 
-}  // namespace
+// The OBJ's mtllib files: materials are ignored (mesh_io.h), so none is parsed, but each named file that
+// exists must be a regular file of at most max_material_file_bytes inside the OBJ's folder tree, or the OBJ
+// is refused (tinyobjloader would open any path, /dev/zero included). A missing one is ignored.
+class MaterialCheck final : public tinyobj::MaterialReader {
+ public:
+  explicit MaterialCheck(std::filesystem::path root) : m_root(std::move(root)) {}
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>*, std::map<std::string, int>*,
+                  std::string*, std::string*) override {
+    const std::filesystem::path p = m_root / name;
+    std::error_code ec;
+    if (!std::filesystem::exists(p, ec)) return true;
+    std::string why;
+    if (!inside_tree(m_root, p)) {
+      why = "it is outside the OBJ file's folder";
+    } else {
+      why = check_file(p, max_material_file_bytes);
+    }
+    if (!why.empty() && m_refused.empty()) m_refused = "mtllib '" + printable(name) + "': " + why;
+    return why.empty();
+  }
+  const std::string& refused() const { return m_refused; }
 
-Result<MeshShape> load_obj(const std::filesystem::path& path) {
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path.string(), config) || !reader.Valid()) {
-    const std::string why = one_line(reader.Error());
+ private:
+  std::filesystem::path m_root;
+  std::string m_refused;
+};
+
+Result<MeshShape> read_obj(const std::filesystem::path& path) {
+  if (const std::string why = check_file(path, max_mesh_file_bytes); !why.empty()) {
+    return mesh_error(path, "cannot read OBJ: " + why);
+  }
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return mesh_error(path, "cannot read OBJ: cannot open the file");
+  MaterialCheck materials(path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path());
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> unused_materials;
+  std::string warn;
+  std::string err;
+  const bool ok = tinyobj::LoadObj(&attrib, &shapes, &unused_materials, &warn, &err, &file, &materials, true, false);
+  if (!materials.refused().empty()) return mesh_error(path, "refused " + materials.refused());
+  if (!ok) {
+    const std::string why = one_line(err);
     return mesh_error(path, "cannot read OBJ" + (why.empty() ? std::string() : ": " + why));
   }
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
   const std::size_t num_positions = attrib.vertices.size() / 3;
   const std::size_t num_normals = attrib.normals.size() / 3;
   const std::size_t num_uvs = attrib.texcoords.size() / 2;
@@ -140,7 +251,7 @@ Result<MeshShape> load_obj(const std::filesystem::path& path) {
   bool has_normals = true;
   bool has_uvs = true;
   std::size_t corners = 0;
-  for (const auto& shape : reader.GetShapes()) {
+  for (const auto& shape : shapes) {
     for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
       if (shape.mesh.num_face_vertices[f] != 3) {
         return mesh_error(path, "face " + std::to_string(f) + " of '" + shape.name + "' has " +
@@ -154,11 +265,15 @@ Result<MeshShape> load_obj(const std::filesystem::path& path) {
     }
   }
 
+  if (corners / 3 > max_scene_triangles) {
+    return mesh_error(path, std::to_string(corners / 3) + " triangles, more than the limit of " +
+                                std::to_string(max_scene_triangles));
+  }
   MeshShape mesh;
   mesh.source = path.string();
   std::unordered_map<std::array<int, 3>, std::uint32_t, CornerHash> vertex_of;
   mesh.indices.reserve(corners);
-  for (const auto& shape : reader.GetShapes()) {
+  for (const auto& shape : shapes) {
     for (const auto& idx : shape.mesh.indices) {
       const std::array<int, 3> key{idx.vertex_index, has_normals ? idx.normal_index : -1,
                                    has_uvs ? idx.texcoord_index : -1};
@@ -195,14 +310,13 @@ Result<MeshShape> load_obj(const std::filesystem::path& path) {
     }
   }
   finish_normals(mesh);
-  auto ok = check_mesh(path, mesh);
-  if (!ok) return ok.error();
+  auto checked = check_mesh(path, mesh);
+  if (!checked) return checked.error();
   return mesh;
 }
 
 // ---- glTF ---------------------------------------------------------------------------------------------
 
-namespace {
 
 // A validated accessor: `count` elements of `components` values each, `stride` bytes apart.
 struct AccessorView {
@@ -313,12 +427,19 @@ Result<AccessorView> view_accessor(const tinygltf::Model& model, int index, cons
   out.components = components;
   out.normalized = a.normalized;
   if (a.count == 0) return out;
-  const std::size_t start = view.byteOffset + a.byteOffset;
-  const std::size_t end = start + stride * (a.count - 1) + element_size;
-  if (a.byteOffset + stride * (a.count - 1) + element_size > view.byteLength || end > buffer.data.size()) {
-    return make_error(where + ": its data runs past the end of its buffer");
+  // The view must lie in the buffer and the accessor's last element in the view. Checked by subtraction
+  // and division only: count, offsets and lengths come from the file and may be near 2^64.
+  const std::size_t buffer_size = buffer.data.size();
+  if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) {
+    return make_error("bufferView " + std::to_string(a.bufferView) + ": it runs past the end of its buffer (" +
+                      std::to_string(buffer_size) + " bytes)");
   }
-  out.data = buffer.data.data() + start;
+  if (a.byteOffset > view.byteLength || element_size > view.byteLength - a.byteOffset ||
+      a.count - 1 > (view.byteLength - a.byteOffset - element_size) / stride) {
+    return make_error(where + ": count " + std::to_string(a.count) + " runs past the end of its bufferView (" +
+                      std::to_string(view.byteLength) + " bytes)");
+  }
+  out.data = buffer.data.data() + view.byteOffset + a.byteOffset;
   return out;
 }
 
@@ -392,7 +513,11 @@ struct GltfBuilder {
 
     const std::size_t base = mesh.positions.size();
     const std::size_t count = positions->count;
-    if (base + count > 0xffffffffULL) return make_error(where + ": too many vertices");
+    // Every instance copies its vertices: bound them (3 per triangle of the limit) before allocating.
+    if (count > 3 * max_scene_triangles - base) {
+      return make_error(where + ": the node hierarchy instances more than " + std::to_string(3 * max_scene_triangles) +
+                        " vertices (the limit is " + std::to_string(max_scene_triangles) + " triangles)");
+    }
     const Mat3 normal_matrix = inverse_transpose(xf.linear);
     for (std::size_t i = 0; i < count; ++i) {
       const Vec3 p{positions->component(i, 0), positions->component(i, 1), positions->component(i, 2)};
@@ -410,6 +535,10 @@ struct GltfBuilder {
                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
                                false);
       if (!idx) return idx.error();
+      if (idx->count / 3 > max_scene_triangles) {
+        return make_error(where + " indices: count " + std::to_string(idx->count) + " is more than " +
+                          std::to_string(max_scene_triangles) + " triangles");
+      }
       local.reserve(idx->count);
       for (std::size_t i = 0; i < idx->count; ++i) {
         const double v = idx->component(i, 0);
@@ -425,6 +554,10 @@ struct GltfBuilder {
     if (local.size() % 3 != 0) {
       return make_error(where + ": " + std::to_string(local.size()) + " indices is not a whole number of triangles");
     }
+    if (local.size() / 3 > max_scene_triangles - mesh.indices.size() / 3) {
+      return make_error(where + ": the node hierarchy instances more than " + std::to_string(max_scene_triangles) +
+                        " triangles");
+    }
     const bool mirror = determinant(xf.linear) < 0.0;
     for (std::size_t t = 0; t < local.size(); t += 3) {
       const auto b = static_cast<std::uint32_t>(base);
@@ -436,34 +569,53 @@ struct GltfBuilder {
     return true;
   }
 
-  Result<bool> visit(int node_index, const MeshTransform& parent, std::size_t depth) {
-    if (node_index < 0 || static_cast<std::size_t>(node_index) >= model.nodes.size()) {
-      return make_error("node " + std::to_string(node_index) + " does not exist");
-    }
-    if (depth > model.nodes.size()) return make_error("the node hierarchy has a cycle");
-    const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(node_index)];
-    const MeshTransform xf = compose(parent, node_transform(node));
-    if (node.mesh >= 0) {
-      if (static_cast<std::size_t>(node.mesh) >= model.meshes.size()) {
-        return make_error("node " + std::to_string(node_index) + " refers to mesh " + std::to_string(node.mesh) +
-                          ", which does not exist");
+  // Visits the hierarchy under `root` depth first, parents before children, children in order, without
+  // recursion (a chain of 10^5 nodes is a valid file). Every visit counts toward max_gltf_node_instances: a
+  // DAG (a node listed as a child by several parents) is instanced once per path, which can grow as 8^20.
+  Result<bool> visit(int root) {
+    struct Pending {
+      int node;
+      MeshTransform parent;
+      std::size_t depth;
+    };
+    std::vector<Pending> stack{{root, MeshTransform{}, 0}};
+    while (!stack.empty()) {
+      const Pending item = std::move(stack.back());
+      stack.pop_back();
+      const int node_index = item.node;
+      if (node_index < 0 || static_cast<std::size_t>(node_index) >= model.nodes.size()) {
+        return make_error("node " + std::to_string(node_index) + " does not exist");
       }
-      if (std::abs(determinant(xf.linear)) == 0.0 || !std::isfinite(determinant(xf.linear))) {
-        return make_error("node " + std::to_string(node_index) + " has a singular transform");
+      if (item.depth > model.nodes.size()) return make_error("the node hierarchy has a cycle");
+      if (++instances > max_gltf_node_instances) {
+        return make_error("the node hierarchy instances more than " + std::to_string(max_gltf_node_instances) +
+                          " nodes (nodes listed as children of several parents are instanced once per path)");
       }
-      const tinygltf::Mesh& m = model.meshes[static_cast<std::size_t>(node.mesh)];
-      for (std::size_t p = 0; p < m.primitives.size(); ++p) {
-        const std::string where = "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p);
-        auto r = add_primitive(m.primitives[p], where, xf);
-        if (!r) return r;
+      const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(node_index)];
+      const MeshTransform xf = compose(item.parent, node_transform(node));
+      if (node.mesh >= 0) {
+        if (static_cast<std::size_t>(node.mesh) >= model.meshes.size()) {
+          return make_error("node " + std::to_string(node_index) + " refers to mesh " + std::to_string(node.mesh) +
+                            ", which does not exist");
+        }
+        if (std::abs(determinant(xf.linear)) == 0.0 || !std::isfinite(determinant(xf.linear))) {
+          return make_error("node " + std::to_string(node_index) + " has a singular transform");
+        }
+        const tinygltf::Mesh& m = model.meshes[static_cast<std::size_t>(node.mesh)];
+        for (std::size_t p = 0; p < m.primitives.size(); ++p) {
+          const std::string where = "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p);
+          auto r = add_primitive(m.primitives[p], where, xf);
+          if (!r) return r;
+        }
       }
-    }
-    for (int child : node.children) {
-      auto r = visit(child, xf, depth + 1);
-      if (!r) return r;
+      for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) {
+        stack.push_back({*it, xf, item.depth + 1});
+      }
     }
     return true;
   }
+
+  std::uint64_t instances = 0;
 };
 
 // glTF images are not needed for geometry: skip decoding them.
@@ -471,27 +623,93 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
   return true;
 }
 
-}  // namespace
+// tinygltf's file access, restricted: the files a glTF names (buffers, images) must be regular files of at
+// most max_mesh_file_bytes inside the folder tree of the glTF file; "~" is not expanded; nothing is written.
+// A refused buffer fails the load with our reason; a refused image only loses the image (never decoded).
+struct GltfFiles {
+  std::filesystem::path root;
+  std::string refused;  // the first file refused and why
+};
 
-Result<MeshShape> load_gltf(const std::filesystem::path& path) {
+bool gltf_file_exists(const std::string& name, void*) {
+  std::error_code ec;
+  return std::filesystem::exists(name, ec);
+}
+
+std::string gltf_expand_path(const std::string& name, void*) { return name; }
+
+bool gltf_read_file(std::vector<unsigned char>* out, std::string* err, const std::string& name, void* user) {
+  auto* files = static_cast<GltfFiles*>(user);
+  std::string why;
+  if (!inside_tree(files->root, name)) {
+    why = "it is outside the glTF file's folder";
+  } else {
+    why = check_file(name, max_mesh_file_bytes);
+  }
+  if (why.empty()) {
+    std::string bytes;
+    if (read_whole(name, bytes)) {
+      out->assign(bytes.begin(), bytes.end());
+      return true;
+    }
+    why = "cannot read it";
+  }
+  if (files->refused.empty()) files->refused = "'" + printable(name, max_library_bytes) + "': " + why;
+  if (err != nullptr) *err += "refused to read " + name + "\n";
+  return false;
+}
+
+bool gltf_write_file(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err != nullptr) *err += "writing is not allowed\n";
+  return false;
+}
+
+// The JSON text of a .gltf file, or the JSON chunk of a .glb (glTF 2.0, 4.4: a 12-byte header, then chunks
+// of length, type and data, the first of type JSON).
+std::string_view gltf_json(const std::string& bytes, bool binary) {
+  if (!binary) return bytes;
+  if (bytes.size() < 20) return {};
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return std::string_view(bytes).substr(20, std::min<std::size_t>(length, bytes.size() - 20));
+}
+
+
+Result<MeshShape> read_gltf(const std::filesystem::path& path) {
+  const bool binary = lower_extension(path) == ".glb";
+  auto bytes = read_text(path, max_mesh_file_bytes);
+  if (!bytes) return mesh_error(path, "cannot read glTF: " + bytes.error().message);
+  // tinygltf turns JSON "extras" into its own values by recursion: bound the nesting before it parses.
+  if (json_depth(gltf_json(*bytes, binary), max_json_depth) > max_json_depth) {
+    return mesh_error(path, "JSON nested deeper than " + std::to_string(max_json_depth) + " levels");
+  }
   tinygltf::Model model;
   std::string err;
   std::string warn;
   bool ok = false;
+  GltfFiles files;
+  files.root = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
   try {
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skip_image, nullptr);
-    ok = lower_extension(path) == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
-                                         : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
+    loader.SetFsCallbacks({&gltf_file_exists, &gltf_expand_path, &gltf_read_file, &gltf_write_file, &files});
+    const std::string base_dir = files.root.string();
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes->data());
+    const auto size = static_cast<unsigned int>(bytes->size());
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, base_dir)
+                : loader.LoadASCIIFromString(&model, &err, &warn, bytes->data(), size, base_dir);
+  } catch (const std::bad_alloc&) {
+    return mesh_error(path, "out of memory while reading glTF");
   } catch (const std::exception& e) {
     return mesh_error(path, std::string("cannot read glTF: ") + one_line(e.what()));
   }
+  if (!ok && !files.refused.empty()) return mesh_error(path, "refused to read " + files.refused);
   if (!ok) return mesh_error(path, "cannot read glTF: " + one_line(err.empty() ? warn : err));
   if (!model.extensionsRequired.empty()) {
     return mesh_error(path, "required extension " + model.extensionsRequired.front() + " is not supported");
   }
 
-  GltfBuilder builder{model, {}, true, true};
+  GltfBuilder builder{model, {}, true, true, 0};
   builder.mesh.source = path.string();
   std::vector<int> roots;
   if (!model.scenes.empty()) {
@@ -513,7 +731,7 @@ Result<MeshShape> load_gltf(const std::filesystem::path& path) {
     }
   }
   for (int root : roots) {
-    auto r = builder.visit(root, MeshTransform{}, 0);
+    auto r = builder.visit(root);
     if (!r) return mesh_error(path, r.error().message);
   }
   MeshShape mesh = std::move(builder.mesh);
@@ -524,6 +742,22 @@ Result<MeshShape> load_gltf(const std::filesystem::path& path) {
   if (!checked) return checked.error();
   return mesh;
 }
+
+// Allocation failures (the file's sizes are checked, but memory may still run out) become errors.
+Result<MeshShape> guarded(const std::filesystem::path& path, Result<MeshShape> (*read)(const std::filesystem::path&)) {
+  try {
+    return read(path);
+  } catch (const std::bad_alloc&) {
+    return mesh_error(path, "out of memory while reading the mesh");
+  } catch (const std::length_error&) {
+    return mesh_error(path, "out of memory while reading the mesh");
+  }
+}
+
+}  // namespace
+
+Result<MeshShape> load_obj(const std::filesystem::path& path) { return guarded(path, read_obj); }
+Result<MeshShape> load_gltf(const std::filesystem::path& path) { return guarded(path, read_gltf); }
 
 Result<MeshShape> load_mesh(const std::filesystem::path& path) {
   const std::string ext = lower_extension(path);

@@ -4,7 +4,8 @@
 // Contract:
 // - load_mesh picks the reader by extension, case-insensitive: .obj, .gltf, .glb; any other is an error.
 // - OBJ: every object and group of the file in one mesh; polygons are triangulated as fans; materials
-//   (.mtl) are ignored. A vertex is a distinct (position, normal, uv) index triple of the file. Normals and
+//   (.mtl) are ignored, but every mtllib that exists must be a regular file inside the OBJ's folder tree
+//   (or the OBJ is refused: tinyobjloader would open /dev/zero). A vertex is a distinct (position, normal, uv) index triple of the file. Normals and
 //   uvs are kept only when every face corner has one; uvs are flipped to the glTF convention (v -> 1 - v,
 //   OBJ's vt has its origin at the bottom left of the image, shadelab's texture uv at the top left).
 // - glTF: every primitive of every mesh instanced by the nodes of the default scene (the first scene when
@@ -18,6 +19,11 @@
 // - Normals are normalized; if any is zero or not finite, all normals are dropped (the renderer then uses
 //   the geometric normals). Positions must be finite and indices in range; a mesh without triangles is an
 //   error. Every error is one line that starts with the file's path.
+// - Files a glTF names (buffers, images) must be regular files inside its folder tree; "~" is not expanded.
+// - Limits (scene/limits.h): files up to max_mesh_file_bytes, glTF JSON up to max_json_depth levels, at most
+//   max_gltf_node_instances node visits (a DAG instances a node once per path) and max_scene_triangles
+//   triangles; accessor bounds are checked without overflow; the node hierarchy is visited without
+//   recursion. Running out of memory is an error, not an exception.
 // - MeshShape::source is the path as given; material is 0.
 #pragma once
 

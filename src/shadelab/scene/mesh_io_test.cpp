@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -389,6 +390,166 @@ TEST(MeshIo, ExampleMeshes) {
     EXPECT_NEAR(dot(normalize(cross(b - a, c - a)), n), 1.0, 1e-6);  // winding agrees with the normal
     EXPECT_NEAR(std::abs(dot(a, n)), 0.5, 1e-6);                     // on the face of the unit cube
   }
+}
+
+// ---- bad input that used to crash, hang or exhaust memory (issue 16) ----
+
+// A chain of 100,000 nodes, each the only child of the one before, the last with the triangle: the
+// recursive visit overflowed the stack (SIGSEGV). The chain is a valid file and loads.
+TEST(MeshIoLimits, DeepNodeChainLoadsWithoutRecursion) {
+  const fs::path dir = temp_dir("deep_chain");
+  std::vector<int> a;
+  const GltfWriter w = triangle(k_ushort, &a);
+  const int n = 100000;
+  json nodes = json::array();
+  for (int i = 0; i < n; ++i) {
+    json node = {{"translation", {0.0, 1e-5, 0.0}}};
+    if (i + 1 < n) node["children"] = {i + 1};
+    if (i + 1 == n) node["mesh"] = 0;
+    nodes.push_back(node);
+  }
+  const fs::path file = dir / "chain.gltf";
+  w.write_gltf(file, w.document(nodes, json::array({{{"primitives", {primitive(a)}}}}), json::array({{{"nodes", {0}}}})));
+  auto mesh = load_gltf(file);
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  ASSERT_EQ(mesh->positions.size(), 3u);
+  // Every node's translation is applied: 100,000 x 1e-5 = 1 up.
+  EXPECT_NEAR(mesh->positions[0].y, 1.0, 1e-6);
+}
+
+// 20 nodes, each listing the next 8 times: 8^19 instances from a 3 KB file ran for ever and grew to
+// gigabytes. The visit count is bounded (limits.h): a clean error, at once.
+TEST(MeshIoLimits, NodeDagInstancesAreBounded) {
+  const fs::path dir = temp_dir("dag");
+  std::vector<int> a;
+  const GltfWriter w = triangle(k_ushort, &a);
+  json nodes = json::array();
+  for (int i = 0; i < 20; ++i) {
+    json node = {{"mesh", 0}};
+    if (i + 1 < 20) node["children"] = std::vector<int>(8, i + 1);
+    nodes.push_back(node);
+  }
+  const fs::path file = dir / "dag.gltf";
+  w.write_gltf(file, w.document(nodes, json::array({{{"primitives", {primitive(a)}}}}), json::array({{{"nodes", {0}}}})));
+  ASSERT_LT(fs::file_size(file), 4000u);
+  auto mesh = load_gltf(file);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.error().message.rfind(file.string() + ": ", 0), 0u) << mesh.error().message;
+  EXPECT_NE(mesh.error().message.find("instances more than"), std::string::npos) << mesh.error().message;
+}
+
+// An index accessor whose count is near 2^63 wrapped the bounds check (stride x count overflowed) and threw
+// from reserve (exit 3). Every overflowing count is a clean error naming the accessor.
+TEST(MeshIoLimits, AccessorCountsNearTwoToThe63AreErrors) {
+  const fs::path dir = temp_dir("huge_count");
+  for (const std::uint64_t count : {std::uint64_t{1} << 62, (std::uint64_t{1} << 63) + 1, ~std::uint64_t{0} / 2 + 7}) {
+    for (const int which : {0, 3}) {  // POSITION, indices
+      std::vector<int> a;
+      const GltfWriter w = triangle(k_ushort, &a);
+      json doc = w.document(json::array({{{"mesh", 0}}}), json::array({{{"primitives", {primitive(a)}}}}),
+                            json::array({{{"nodes", {0}}}}));
+      doc["accessors"][a[static_cast<std::size_t>(which)]]["count"] = count;
+      const fs::path file = dir / ("count" + std::to_string(which) + ".gltf");
+      w.write_gltf(file, doc);
+      auto mesh = load_gltf(file);
+      ASSERT_FALSE(mesh) << count;
+      EXPECT_EQ(mesh.error().message.rfind(file.string() + ": ", 0), 0u) << mesh.error().message;
+      EXPECT_NE(mesh.error().message.find("accessor " + std::to_string(a[static_cast<std::size_t>(which)])),
+                std::string::npos)
+          << mesh.error().message;
+    }
+  }
+}
+
+// tinygltf converts "extras" to its own values by recursion: 100,000 nested arrays are refused first.
+TEST(MeshIoLimits, DeeplyNestedGltfJsonIsAnError) {
+  const fs::path dir = temp_dir("deep_json");
+  std::vector<int> a;
+  const GltfWriter w = triangle(k_ushort, &a);
+  const fs::path file = dir / "deep.gltf";
+  w.write_gltf(file, w.document(json::array({{{"mesh", 0}}}), json::array({{{"primitives", {primitive(a)}}}}),
+                                json::array({{{"nodes", {0}}}})));
+  std::ostringstream read;
+  read << std::ifstream(file, std::ios::binary).rdbuf();
+  std::string text = read.str();
+  const auto brace = text.rfind('}');
+  ASSERT_NE(brace, std::string::npos);
+  text.insert(brace, ",\"extras\":" + std::string(100000, '[') + std::string(100000, ']'));
+  write_text(file, text);
+  auto mesh = load_gltf(file);
+  ASSERT_FALSE(mesh);
+  EXPECT_NE(mesh.error().message.find("nested deeper than 64"), std::string::npos) << mesh.error().message;
+}
+
+// A buffer URI may name any file: it must be a regular file inside the glTF's folder tree.
+TEST(MeshIoLimits, GltfBuffersOutsideTheFolderOrNotRegularAreRefused) {
+  const fs::path dir = temp_dir("gltf_uri");
+  fs::create_directories(dir / "model");
+  std::vector<int> a;
+  const GltfWriter w = triangle(k_ushort, &a);
+  const json doc = w.document(json::array({{{"mesh", 0}}}), json::array({{{"primitives", {primitive(a)}}}}),
+                              json::array({{{"nodes", {0}}}}));
+  w.write_gltf(dir / "outside.gltf", doc);  // outside.bin beside it, one folder up from model/
+  fs::create_symlink("/dev/zero", dir / "model" / "zero.bin");  // inside by name, /dev/zero in fact
+  for (const std::string uri : {"../outside.bin", "zero.bin", "/dev/zero"}) {
+    json d = doc;
+    d["buffers"] = json::array({{{"byteLength", fs::file_size(dir / "outside.bin")}, {"uri", uri}}});
+    const fs::path file = write_text(dir / "model" / "m.gltf", d.dump());
+    auto mesh = load_gltf(file);
+    ASSERT_FALSE(mesh) << uri;
+    EXPECT_EQ(mesh.error().message.rfind(file.string() + ": ", 0), 0u) << mesh.error().message;
+    // tinygltf looks "/dev/zero" up under the glTF's folder and does not find it; the others reach our check.
+    if (uri != "/dev/zero") {
+      EXPECT_NE(mesh.error().message.find("refused to read"), std::string::npos) << mesh.error().message;
+    }
+  }
+  // Inside the folder tree it loads.
+  fs::copy_file(dir / "outside.bin", dir / "model" / "inside.bin");
+  json d = doc;
+  d["buffers"] = json::array({{{"byteLength", fs::file_size(dir / "outside.bin")}, {"uri", "inside.bin"}}});
+  auto mesh = load_gltf(write_text(dir / "model" / "m.gltf", d.dump()));
+  EXPECT_TRUE(mesh) << mesh.error().message;
+}
+
+// tinyobjloader opened any mtllib, /dev/zero included (unbounded memory). Material files must be regular
+// files inside the OBJ's folder tree, or the OBJ is refused; a missing one is ignored (materials are).
+TEST(MeshIoLimits, ObjMtllibMustBeARegularFileInsideTheFolder) {
+  const fs::path dir = temp_dir("mtllib");
+  fs::create_directories(dir / "model");
+  write_text(dir / "outside.mtl", "newmtl a\nKd 1 0 0\n");
+  write_text(dir / "model" / "inside.mtl", "newmtl a\nKd 1 0 0\n");
+  const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+  for (const std::string lib : {"/dev/zero", "../outside.mtl", "/etc/passwd"}) {
+    const fs::path file = write_text(dir / "model" / "m.obj", "mtllib " + lib + "\n" + body);
+    auto mesh = load_obj(file);
+    ASSERT_FALSE(mesh) << lib;
+    EXPECT_EQ(mesh.error().message.rfind(file.string() + ": refused mtllib", 0), 0u) << mesh.error().message;
+  }
+  for (const std::string lib : {"inside.mtl", "missing.mtl"}) {
+    auto mesh = load_obj(write_text(dir / "model" / "m.obj", "mtllib " + lib + "\n" + body));
+    ASSERT_TRUE(mesh) << lib << ": " << mesh.error().message;
+    EXPECT_EQ(mesh->indices.size(), 3u);
+  }
+  // The mesh file itself must be a regular file.
+  fs::create_directories(dir / "folder.obj");
+  auto folder = load_obj(dir / "folder.obj");
+  ASSERT_FALSE(folder);
+  EXPECT_NE(folder.error().message.find("not a regular file"), std::string::npos) << folder.error().message;
+}
+
+// A glTF syntax error quoted the JSON around it, a whole base64 buffer included (1,163 bytes): messages are
+// one printable line, cut (core/text.h).
+TEST(MeshIoLimits, LibraryMessagesAreCutAndPrintable) {
+  const fs::path dir = temp_dir("long_message");
+  const std::string base64(5000, 'A');
+  const fs::path file = write_text(dir / "bad.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{\"uri\": "
+                                                    "\"data:application/octet-stream;base64," + base64 + "\"}\x01\x1b]");
+  auto mesh = load_gltf(file);
+  ASSERT_FALSE(mesh);
+  const std::string& m = mesh.error().message;
+  EXPECT_LT(m.size(), file.string().size() + 400) << m;
+  EXPECT_EQ(m.find('\n'), std::string::npos);
+  EXPECT_TRUE(std::none_of(m.begin(), m.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; })) << m;
 }
 
 }  // namespace

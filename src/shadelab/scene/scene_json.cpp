@@ -21,9 +21,11 @@
 #include <nlohmann/json.hpp>
 
 #include "shadelab/core/constants.h"
+#include "shadelab/core/text.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/image/srgb.h"
 #include "shadelab/light/units.h"
+#include "shadelab/scene/limits.h"
 #include "shadelab/scene/mesh_io.h"
 #include "shadelab/scene/procedural.h"
 
@@ -45,8 +47,10 @@ struct Failure {
   std::string message;
 };
 
-// RFC 6901: in a reference token "~" is written "~0" and "/" is written "~1".
-std::string pointer_token(std::string_view key) {
+// RFC 6901: in a reference token "~" is written "~0" and "/" is written "~1". A key too long or not
+// printable to quote whole is cut and escaped (core/text.h): the pointer is for a reader.
+std::string pointer_token(std::string_view raw_key) {
+  const std::string key = printable(raw_key);
   std::string out;
   for (char c : key) {
     if (c == '~') {
@@ -118,7 +122,7 @@ class Object {
       if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
         std::vector<std::string> names(allowed.begin(), allowed.end());
         throw Failure{node.child_pointer(key),
-                      "unknown key '" + key + "' (keys of " + std::string(what) + ": " + join(names) + ")"};
+                      "unknown key '" + printable(key) + "' (keys of " + std::string(what) + ": " + join(names) + ")"};
       }
     }
   }
@@ -162,7 +166,6 @@ double number_in(const Node& n, double lo, bool lo_open, double hi = inf, bool h
   return v;
 }
 
-double positive(const Node& n) { return number_in(n, 0.0, true); }
 double non_negative(const Node& n) { return number_in(n, 0.0, false); }
 
 // An integer in [lo, hi]; 640.0 counts as an integer, 2.5 does not.
@@ -230,14 +233,53 @@ Vec3 vec3(const Node& n) {
   return {number(n.element(0)), number(n.element(1)), number(n.element(2))};
 }
 
-Vec3 nonzero_vec3(const Node& n) {
-  const Vec3 v = vec3(n);
-  if (v.x == 0.0 && v.y == 0.0 && v.z == 0.0) n.fail("expected a non-zero vector, got " + describe(n.value()));
-  if (!std::isfinite(length(v))) n.fail("the vector " + describe(n.value()) + " is too long to normalize");
+// A direction: any non-zero vector, normalized after scaling by its largest component, so that neither
+// [0, 1e-300, 0] (whose squared length underflows) nor [1e300, 0, 0] (overflows) loses its direction.
+// Returns the zero vector when v is zero.
+Vec3 scaled_normalize(const Vec3& v) {
+  const double big = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  return big > 0.0 ? normalize(v / big) : Vec3{};
+}
+
+Vec3 direction(const Node& n) {
+  const Vec3 d = scaled_normalize(vec3(n));
+  if (d.x == 0.0 && d.y == 0.0 && d.z == 0.0) n.fail("expected a non-zero vector, got " + describe(n.value()));
+  return d;
+}
+
+// A position: each coordinate within +-max_scene_coordinate (scene/limits.h).
+Vec3 position(const Node& n) {
+  const Vec3 p = vec3(n);
+  for (double c : {p.x, p.y, p.z}) {
+    if (std::abs(c) > max_scene_coordinate) {
+      n.fail("coordinate " + format_number(c) + " is beyond +-" + format_number(max_scene_coordinate) +
+             " (the largest the renderer's float ray math survives with margin)");
+    }
+  }
+  return p;
+}
+
+// A length (radius, scale): > 0, and within [min_scene_length, max_scene_coordinate] (scene/limits.h).
+double length_value(const Node& n) {
+  const double v = number_in(n, 0.0, true);
+  if (v < min_scene_length || v > max_scene_coordinate) {
+    n.fail("expected a length in [" + format_number(min_scene_length) + ", " + format_number(max_scene_coordinate) +
+           "] (the scene's limits), got " + describe(n.value()));
+  }
   return v;
 }
 
-Vec3 direction(const Node& n) { return normalize(nonzero_vec3(n)); }
+// An edge vector (a quad's u and v): its length in [min_scene_length, max_scene_coordinate].
+Vec3 edge(const Node& n) {
+  const Vec3 v = vec3(n);
+  if (v.x == 0.0 && v.y == 0.0 && v.z == 0.0) n.fail("expected a non-zero vector, got " + describe(n.value()));
+  const double len = length(v);
+  if (!(len >= min_scene_length && len <= max_scene_coordinate)) {
+    n.fail("expected a vector of length in [" + format_number(min_scene_length) + ", " +
+           format_number(max_scene_coordinate) + "], got " + describe(n.value()));
+  }
+  return v;
+}
 
 // A colour: a number >= 0 (grey) or [r, g, b], each >= 0.
 Rgb colour(const Node& n) {
@@ -290,6 +332,15 @@ Rgb radiometric(const Rgb& value, Units units, LightQuantity quantity) {
   return convert(value, unit_name(units, quantity), radiometric_unit(quantity));
 }
 
+// A light value after conversion to radiometry must be at most max_light_value (scene/limits.h) per channel.
+Rgb bounded_light(const Node& n, const Rgb& v) {
+  if (!(v.max_component() <= max_light_value)) {
+    n.fail("the light value " + format_number(v.max_component()) +
+           " (radiometric, after unit conversion) is above the largest supported, " + format_number(max_light_value));
+  }
+  return v;
+}
+
 // A colour times a value: in game and radiometric units the product; in photometric units the colour is a
 // chromaticity scaled so that its photometric value (683 x luminance) is `value` (light/units.h).
 Rgb radiometric(const Rgb& colour_value, double value, Units units, LightQuantity quantity) {
@@ -334,8 +385,8 @@ class Parser {
   void parse_camera(const Node& node) {
     const Object o(node, {"position", "look_at", "up", "fov", "width", "height"}, "a camera");
     Camera& c = m_scene.camera;
-    if (auto n = o.get("position")) c.position = vec3(*n);
-    if (auto n = o.get("look_at")) c.look_at = vec3(*n);
+    if (auto n = o.get("position")) c.position = position(*n);
+    if (auto n = o.get("look_at")) c.look_at = position(*n);
     if (auto n = o.get("up")) c.up = direction(*n);
     if (auto n = o.get("fov")) c.vfov_deg = number_in(*n, 0.0, true, 180.0, true);
     if (auto n = o.get("width")) c.width = int_in(*n, 1, max_image_side);
@@ -440,8 +491,8 @@ class Parser {
     const auto it = m_texture_index.find(name);
     if (it == m_texture_index.end()) {
       std::vector<std::string> names;
-      for (const auto& [k, v] : m_texture_index) names.push_back(k);
-      n.fail("unknown texture '" + name + "' (textures: " + (names.empty() ? std::string("none") : join(names)) + ")");
+      for (const auto& [k, v] : m_texture_index) names.push_back(printable(k));
+      n.fail("unknown texture '" + printable(name) + "' (textures: " + (names.empty() ? std::string("none") : join(names)) + ")");
     }
     return it->second;
   }
@@ -488,7 +539,8 @@ class Parser {
     const Object o(node, {"model", "params", "textures", "gloss_range", "uv_scale", "emission"}, "a material");
     Material m;
     m.name = name;
-    if (auto n = o.get("emission")) m.emission = radiometric(colour(*n), m_units, LightQuantity::radiance);
+    if (auto n = o.get("emission"))
+      m.emission = bounded_light(*n, radiometric(colour(*n), m_units, LightQuantity::radiance));
     if (!o.has("model")) {
       if (!o.has("emission")) o.node().fail("a material needs a 'model' (a BRDF), an 'emission', or both");
       for (const char* key : {"params", "textures"}) {
@@ -523,17 +575,19 @@ class Parser {
     if (auto n = o.get("gloss_range")) {
       if (!n->value().is_array() || n->value().size() != 2)
         n->fail("expected [n_black, n_white], got " + describe(n->value()));
-      const GlossEncoding encoding{positive(n->element(0)), positive(n->element(1))};
+      const GlossEncoding encoding{number_in(n->element(0), 0.0, true, max_gloss_exponent),
+                                   number_in(n->element(1), 0.0, true, max_gloss_exponent)};
       auto valid = encoding.validated();
       if (!valid) n->fail(valid.error().message);
       m.gloss_encoding = *valid;
     }
     if (auto n = o.get("uv_scale")) {
       if (n->value().is_number()) {
-        const double s = positive(*n);
+        const double s = number_in(*n, 0.0, true, max_uv_scale);
         m.uv_scale = {s, s};
       } else if (n->value().is_array() && n->value().size() == 2) {
-        m.uv_scale = {positive(n->element(0)), positive(n->element(1))};
+        m.uv_scale = {number_in(n->element(0), 0.0, true, max_uv_scale),
+                      number_in(n->element(1), 0.0, true, max_uv_scale)};
       } else {
         n->fail("expected a number or [su, sv], got " + describe(n->value()));
       }
@@ -588,8 +642,8 @@ class Parser {
     const auto it = m_material_index.find(name);
     if (it == m_material_index.end()) {
       std::vector<std::string> names;
-      for (const auto& [k, v] : m_material_index) names.push_back(k);
-      n.fail("unknown material '" + name + "' (materials: " + (names.empty() ? std::string("none") : join(names)) +
+      for (const auto& [k, v] : m_material_index) names.push_back(printable(k));
+      n.fail("unknown material '" + printable(name) + "' (materials: " + (names.empty() ? std::string("none") : join(names)) +
              ")");
     }
     return it->second;
@@ -610,16 +664,16 @@ class Parser {
     if (type == "sphere") {
       const Object o(node, {"type", "center", "radius", "material"}, "a sphere");
       SphereShape s;
-      s.center = vec3(o.require("center"));
-      s.radius = positive(o.require("radius"));
+      s.center = position(o.require("center"));
+      s.radius = length_value(o.require("radius"));
       s.material = material_ref(o.require("material"));
       m_scene.spheres.push_back(s);
     } else if (type == "quad") {
       const Object o(node, {"type", "corner", "u", "v", "material"}, "a quad");
       QuadShape q;
-      q.corner = vec3(o.require("corner"));
-      q.u = nonzero_vec3(o.require("u"));
-      q.v = nonzero_vec3(o.require("v"));
+      q.corner = position(o.require("corner"));
+      q.u = edge(o.require("u"));
+      q.v = edge(o.require("v"));
       const Vec3 n = cross(normalize(q.u), normalize(q.v));
       if (length(n) < 1e-9) throw Failure{o.node().child_pointer("v"), "u and v are parallel: the quad has no area"};
       q.material = material_ref(o.require("material"));
@@ -627,9 +681,9 @@ class Parser {
     } else if (type == "disk") {
       const Object o(node, {"type", "center", "normal", "radius", "material"}, "a disk");
       DiskShape d;
-      d.center = vec3(o.require("center"));
+      d.center = position(o.require("center"));
       if (auto n = o.get("normal")) d.normal = direction(*n);
-      d.radius = positive(o.require("radius"));
+      d.radius = length_value(o.require("radius"));
       d.material = material_ref(o.require("material"));
       m_scene.disks.push_back(d);
     } else {
@@ -645,8 +699,25 @@ class Parser {
         if (!loaded) file_node.fail(loaded.error().message);
         cached = m_meshes.emplace(path.string(), std::move(*loaded)).first;
       }
+      // Bound the scene's triangles before copying another instance (scene/limits.h).
+      const std::uint64_t triangles = cached->second.indices.size() / 3;
+      if (m_triangles + triangles > max_scene_triangles) {
+        file_node.fail("this mesh's " + std::to_string(triangles) + " triangles bring the scene to " +
+                       std::to_string(m_triangles + triangles) + ", above the limit of " +
+                       std::to_string(max_scene_triangles));
+      }
+      m_triangles += triangles;
       MeshShape mesh = cached->second;
       transform_mesh(mesh, xf);
+      for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        const Vec3& p = mesh.positions[i];
+        if (!(std::abs(p.x) <= max_scene_coordinate && std::abs(p.y) <= max_scene_coordinate &&
+              std::abs(p.z) <= max_scene_coordinate)) {
+          throw Failure{o.has("transform") ? o.node().child_pointer("transform") : file_node.pointer(),
+                        "vertex " + std::to_string(i) + " of '" + printable(path.string()) +
+                            "' is beyond +-" + format_number(max_scene_coordinate) + " after the transform"};
+        }
+      }
       mesh.material = material;
       m_scene.meshes.push_back(std::move(mesh));
     }
@@ -658,7 +729,7 @@ class Parser {
     Vec3 axis{0.0, 1.0, 0.0};
     double degrees = 0.0;
     Vec3 scale{1.0, 1.0, 1.0};
-    if (auto n = o.get("translate")) translate = vec3(*n);
+    if (auto n = o.get("translate")) translate = position(*n);
     if (o.has("rotate") && o.has("rotate_y"))
       throw Failure{o.node().child_pointer("rotate_y"), "give 'rotate' or 'rotate_y', not both"};
     if (auto n = o.get("rotate")) {
@@ -666,16 +737,16 @@ class Parser {
         n->fail("expected [axis x, axis y, axis z, degrees], got " + describe(n->value()));
       const Vec3 a{number(n->element(0)), number(n->element(1)), number(n->element(2))};
       if (a.x == 0.0 && a.y == 0.0 && a.z == 0.0) n->fail("the rotation axis is the zero vector");
-      axis = normalize(a);
+      axis = scaled_normalize(a);
       degrees = number(n->element(3));
     }
     if (auto n = o.get("rotate_y")) degrees = number(*n);
     if (auto n = o.get("scale")) {
       if (n->value().is_number()) {
-        const double s = positive(*n);
+        const double s = length_value(*n);
         scale = {s, s, s};
       } else if (n->value().is_array() && n->value().size() == 3) {
-        scale = {positive(n->element(0)), positive(n->element(1)), positive(n->element(2))};
+        scale = {length_value(n->element(0)), length_value(n->element(1)), length_value(n->element(2))};
       } else {
         n->fail("expected a number or [sx, sy, sz], got " + describe(n->value()));
       }
@@ -692,6 +763,14 @@ class Parser {
 
   // color x intensity (or the alternatives of point and spot lights) -> radiometric.
   Rgb light_colour(const Object& o) const { return o.has("color") ? colour(*o.get("color")) : Rgb::gray(1.0); }
+
+  // The field a light's converted value is blamed on: its intensity (or power), else its colour, else itself.
+  static Node value_node(const Object& o) {
+    for (const char* key : {"intensity", "power", "blender_watts", "color"}) {
+      if (auto n = o.get(key)) return *n;
+    }
+    return o.node();
+  }
 
   Rgb punctual_intensity(const Object& o, double cos_outer) const {
     const Rgb c = light_colour(o);
@@ -726,17 +805,19 @@ class Parser {
     const std::string type = word(Node(node.value().at("type"), node.child_pointer("type")),
                                   {"directional", "point", "spot", "sphere", "hemisphere"});
     if (type == "directional") {
-      const Object o(node, {"type", "direction", "color", "intensity"}, "a directional light");
+      const Object o(node, {"type", "direction", "color", "intensity", "game"}, "a directional light");
       DirectionalLight l;
       l.to_light = direction(o.require("direction"));
+      // Game mode: shaded per pixel ("punctual", the default) or added to the SH9 ambient ("sh", D3DX-style).
+      if (auto n = o.get("game")) l.game_sh = word(*n, {"punctual", "sh"}) == "sh";
       const double value = o.has("intensity") ? non_negative(*o.get("intensity")) : 1.0;
-      l.irradiance = radiometric(light_colour(o), value, m_units, LightQuantity::irradiance);
+      l.irradiance = bounded_light(value_node(o), radiometric(light_colour(o), value, m_units, LightQuantity::irradiance));
       m_scene.lights.emplace_back(l);
     } else if (type == "point") {
       const Object o(node, {"type", "position", "color", "intensity", "power", "blender_watts"}, "a point light");
       PointLight l;
-      l.position = vec3(o.require("position"));
-      l.intensity = punctual_intensity(o, -1.0);
+      l.position = position(o.require("position"));
+      l.intensity = bounded_light(value_node(o), punctual_intensity(o, -1.0));
       m_scene.lights.emplace_back(l);
     } else if (type == "spot") {
       const Object o(node,
@@ -744,35 +825,36 @@ class Parser {
                       "blender_watts"},
                      "a spot light");
       SpotLight l;
-      l.position = vec3(o.require("position"));
+      l.position = position(o.require("position"));
       l.axis = direction(o.require("direction"));
       const double outer = o.has("outer_angle") ? number_in(*o.get("outer_angle"), 0.0, true, 90.0, false) : 45.0;
       const double inner = o.has("inner_angle") ? number_in(*o.get("inner_angle"), 0.0, false, outer, true) : 0.0;
       l.cos_outer = std::cos(deg_to_rad(outer));
       l.cos_inner = std::cos(deg_to_rad(inner));
-      l.intensity = punctual_intensity(o, l.cos_outer);
+      l.intensity = bounded_light(value_node(o), punctual_intensity(o, l.cos_outer));
       m_scene.lights.emplace_back(l);
     } else if (type == "sphere") {
       const Object o(node, {"type", "center", "radius", "radiance", "color", "intensity"}, "a sphere light");
       SphereLight l;
-      l.center = vec3(o.require("center"));
-      l.radius = positive(o.require("radius"));
+      l.center = position(o.require("center"));
+      l.radius = length_value(o.require("radius"));
       if (o.has("radiance")) {
         for (const char* key : {"color", "intensity"}) {
           if (o.has(key))
             throw Failure{o.node().child_pointer(key), "give 'radiance' or 'color' x 'intensity', not both"};
         }
-        l.radiance = radiometric(colour(*o.get("radiance")), m_units, LightQuantity::radiance);
+        l.radiance = bounded_light(*o.get("radiance"), radiometric(colour(*o.get("radiance")), m_units, LightQuantity::radiance));
       } else {
         const double value = o.has("intensity") ? non_negative(*o.get("intensity")) : 1.0;
-        l.radiance = radiometric(light_colour(o), value, m_units, LightQuantity::radiance);
+        l.radiance = bounded_light(value_node(o), radiometric(light_colour(o), value, m_units, LightQuantity::radiance));
       }
       m_scene.lights.emplace_back(l);
     } else {
       const Object o(node, {"type", "sky", "ground", "up"}, "a hemisphere light");
       HemisphereLight l;
-      l.sky = radiometric(colour(o.require("sky")), m_units, LightQuantity::radiance);
-      if (auto n = o.get("ground")) l.ground = radiometric(colour(*n), m_units, LightQuantity::radiance);
+      l.sky = bounded_light(o.require("sky"), radiometric(colour(o.require("sky")), m_units, LightQuantity::radiance));
+      if (auto n = o.get("ground"))
+        l.ground = bounded_light(*n, radiometric(colour(*n), m_units, LightQuantity::radiance));
       if (auto n = o.get("up")) l.up = direction(*n);
       m_scene.lights.emplace_back(l);
     }
@@ -804,13 +886,21 @@ class Parser {
       env.latlong = std::move(*image);
       env.source = path.string();
       if (auto n = o.get("rotation")) env.rotation_deg = number(*n);
-      const double scale = o.has("scale") ? non_negative(*o.get("scale")) : 1.0;
+      const double scale = o.has("scale") ? number_in(*o.get("scale"), 0.0, false, max_light_value) : 1.0;
       // The map's texels are radiance in the scene's units; fold the unit conversion into the scale.
       env.scale = scale * radiometric(Rgb::gray(1.0), m_units, LightQuantity::radiance).r;
+      float peak = 0.0f;
+      for (float v : env.latlong.data) peak = std::max(peak, std::abs(v));
+      if (!(static_cast<double>(peak) * env.scale <= max_light_value)) {
+        throw Failure{o.has("scale") ? o.node().child_pointer("scale") : file_node.pointer(),
+                      "the brightest texel of '" + printable(path.string()) + "' (" + format_number(peak) +
+                          ") times the scale is " + format_number(static_cast<double>(peak) * env.scale) +
+                          ", above the largest supported light value " + format_number(max_light_value)};
+      }
     } else if (kinds[0] == "uniform") {
       const Object o(node, {"uniform"}, "a uniform environment");
       env.kind = Environment::Kind::uniform;
-      env.uniform = radiometric(colour(*o.get("uniform")), m_units, LightQuantity::radiance);
+      env.uniform = bounded_light(*o.get("uniform"), radiometric(colour(*o.get("uniform")), m_units, LightQuantity::radiance));
       env.source = "uniform";
     } else {
       const Object outer(node, {"sky"}, "a sky environment");
@@ -818,12 +908,14 @@ class Parser {
                      {"sun_direction", "sun_angular_radius", "sun_irradiance", "zenith", "horizon", "ground"}, "a sky");
       SkyModel& sky = env.sky;
       if (auto n = o.get("sun_direction")) sky.sun_direction = direction(*n);
-      if (auto n = o.get("sun_angular_radius")) sky.sun_angular_radius_deg = number_in(*n, 0.0, true, 45.0, false);
+      if (auto n = o.get("sun_angular_radius"))
+        sky.sun_angular_radius_deg = number_in(*n, min_sun_angular_radius_deg, false, 45.0, false);
       if (auto n = o.get("sun_irradiance"))
-        sky.sun_irradiance = radiometric(colour(*n), m_units, LightQuantity::irradiance);
-      if (auto n = o.get("zenith")) sky.zenith = radiometric(colour(*n), m_units, LightQuantity::radiance);
-      if (auto n = o.get("horizon")) sky.horizon = radiometric(colour(*n), m_units, LightQuantity::radiance);
-      if (auto n = o.get("ground")) sky.ground = radiometric(colour(*n), m_units, LightQuantity::radiance);
+        sky.sun_irradiance = bounded_light(*n, radiometric(colour(*n), m_units, LightQuantity::irradiance));
+      auto sky_radiance = [&](const Node& n) { return bounded_light(n, radiometric(colour(n), m_units, LightQuantity::radiance)); };
+      if (auto n = o.get("zenith")) sky.zenith = sky_radiance(*n);
+      if (auto n = o.get("horizon")) sky.horizon = sky_radiance(*n);
+      if (auto n = o.get("ground")) sky.ground = sky_radiance(*n);
       env.kind = Environment::Kind::sky;
       env.source = "sky";
     }
@@ -835,25 +927,29 @@ class Parser {
   std::map<std::string, int, std::less<>> m_texture_index;
   std::map<std::string, int, std::less<>> m_material_index;
   std::map<std::string, MeshShape> m_meshes;  // each mesh file read once, by resolved path
+  std::uint64_t m_triangles = 0;              // of all mesh instances so far
 };
 
 // Tracks the JSON pointer of the value being parsed (for duplicate keys and number overflow, which
-// nlohmann reports without a position) through the parser's callback events.
+// nlohmann reports without a position) through the parser's callback events, and bounds the nesting depth
+// (max_json_depth, scene/limits.h) by throwing a Failure at the first container beyond it. Each frame keeps
+// only its own key or index, so tracking costs O(1) per event; the pointer is joined only for a message.
 class PointerTracker {
  public:
   bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
-        m_stack.push_back({false, current(), 0, {}, {}});
-        break;
       case json::parse_event_t::array_start:
-        m_stack.push_back({true, current(), 0, {}, {}});
+        if (m_stack.size() >= max_json_depth) {
+          throw Failure{current(), "JSON nested deeper than " + std::to_string(max_json_depth) + " levels"};
+        }
+        m_stack.push_back({event == json::parse_event_t::array_start, 0, {}, {}});
         break;
       case json::parse_event_t::key: {
         Frame& f = m_stack.back();
         f.key = parsed.get<std::string>();
         if (!f.keys.insert(f.key).second && !m_duplicate)
-          m_duplicate = Failure{current(), "duplicate key '" + f.key + "'"};
+          m_duplicate = Failure{current(), "duplicate key '" + printable(f.key) + "'"};
         break;
       }
       case json::parse_event_t::object_end:
@@ -870,16 +966,15 @@ class PointerTracker {
 
   // The pointer of the value being parsed now.
   std::string current() const {
-    if (m_stack.empty()) return "";
-    const Frame& f = m_stack.back();
-    return f.pointer + "/" + (f.array ? std::to_string(f.index) : pointer_token(f.key));
+    std::string out;
+    for (const Frame& f : m_stack) out += "/" + (f.array ? std::to_string(f.index) : pointer_token(f.key));
+    return out;
   }
   const std::optional<Failure>& duplicate() const { return m_duplicate; }
 
  private:
   struct Frame {
     bool array = false;
-    std::string pointer;
     std::size_t index = 0;
     std::string key;
     std::set<std::string> keys;
@@ -898,9 +993,9 @@ std::string syntax_message(const std::string& what) {
   const auto colon = at == std::string::npos ? std::string::npos : what.find(": ", at);
   if (colon == std::string::npos) {
     const auto bracket = what.find("] ");
-    return "malformed JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2));
+    return "malformed JSON: " + printable(bracket == std::string::npos ? what : what.substr(bracket + 2), max_library_bytes);
   }
-  return what.substr(at, colon - at) + ": malformed JSON: " + what.substr(colon + 2);
+  return what.substr(at, colon - at) + ": malformed JSON: " + printable(what.substr(colon + 2), max_library_bytes);
 }
 
 }  // namespace
@@ -912,9 +1007,23 @@ Result<Scene> parse_scene(const nlohmann::json& document, const std::filesystem:
   Scene scene;
   scene.source = source;
   try {
+    // A document parsed elsewhere has not been through the tracker: bound its depth here, without recursion
+    // (messages quote values through json::dump, which recurses).
+    std::vector<std::pair<const json*, std::size_t>> stack{{&document, 1}};
+    while (!stack.empty()) {
+      const auto [v, depth] = stack.back();
+      stack.pop_back();
+      if (!v->is_structured()) continue;
+      if (depth > max_json_depth) {
+        return make_error(source + ": JSON nested deeper than " + std::to_string(max_json_depth) + " levels");
+      }
+      for (const auto& child : *v) stack.emplace_back(&child, depth + 1);
+    }
     Parser(base_dir, scene).parse(document);
   } catch (const Failure& f) {
     return make_error(source + ": " + (f.pointer.empty() ? std::string() : f.pointer + ": ") + f.message);
+  } catch (const std::bad_alloc&) {
+    return make_error(source + ": out of memory while reading the scene and the files it names");
   }
   return scene;
 }
@@ -924,6 +1033,12 @@ Result<Scene> load_scene(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return make_error(source + ": file not found");
   if (!std::filesystem::is_regular_file(path, ec)) return make_error(source + ": not a regular file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return make_error(source + ": cannot read the file size: " + ec.message());
+  if (size > max_scene_file_bytes) {
+    return make_error(source + ": the file has " + std::to_string(size) + " bytes; a scene file may have at most " +
+                      std::to_string(max_scene_file_bytes));
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in.is_open()) return make_error(source + ": cannot open the file");
   std::ostringstream text;
@@ -934,6 +1049,10 @@ Result<Scene> load_scene(const std::filesystem::path& path) {
   json document;
   try {
     document = json::parse(text.str(), std::ref(tracker));
+  } catch (const Failure& f) {  // nesting too deep (the tracker)
+    return make_error(source + ": " + (f.pointer.empty() ? std::string() : f.pointer + ": ") + f.message);
+  } catch (const std::bad_alloc&) {
+    return make_error(source + ": out of memory while parsing the JSON");
   } catch (const json::parse_error& e) {
     return make_error(source + ": " + syntax_message(e.what()));
   } catch (const json::exception& e) {
@@ -941,7 +1060,7 @@ Result<Scene> load_scene(const std::filesystem::path& path) {
     const std::string what = e.what();
     const auto bracket = what.find("] ");
     return make_error(source + ": " + tracker.current() +
-                      ": malformed JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
+                      ": malformed JSON: " + printable(bracket == std::string::npos ? what : what.substr(bracket + 2), max_library_bytes));
   }
   if (tracker.duplicate())
     return make_error(source + ": " + tracker.duplicate()->pointer + ": " + tracker.duplicate()->message);

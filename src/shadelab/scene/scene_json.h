@@ -14,7 +14,8 @@
 //   Malformed JSON names the line and column instead of a pointer. Unknown keys, duplicate keys (load_scene
 //   only: a parsed document has already lost them), wrong types, non-finite or out-of-range numbers, zero
 //   vectors, unknown model, material or texture names and missing files are all errors: a typo never
-//   passes silently. Nothing throws, nothing prints.
+//   passes silently. Values beyond the scene limits (scene/limits.h: coordinates, lengths, light values,
+//   triangles, JSON depth, file sizes) are errors too. Nothing throws, nothing prints.
 #pragma once
 
 #include <filesystem>

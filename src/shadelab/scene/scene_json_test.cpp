@@ -434,7 +434,7 @@ TEST(SceneJsonErrors, TypesAndValues) {
   EXPECT_EQ(error_of(R"({"environment": {"uniform": 1, "sky": {}}})"),
             "scene.json: /environment/sky: give one of 'file', 'uniform' or 'sky', not several");
   EXPECT_EQ(error_of(R"({"environment": {"sky": {"sun_angular_radius": 0}}})"),
-            "scene.json: /environment/sky/sun_angular_radius: expected a number in (0, 45], got 0");
+            "scene.json: /environment/sky/sun_angular_radius: expected a number in [0.001, 45], got 0");
   // A NaN can only come from a document built in code.
   json doc = {{"camera", {{"fov", std::nan("")}}}};
   auto nan = parse_scene(doc, ".", "scene.json");

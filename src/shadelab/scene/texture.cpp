@@ -1,6 +1,7 @@
 // sample_texture (scene.h): bilinear interpolation between texel centres, wrapping around in u and v.
 // Texel (x, y) covers u in [x / W, (x + 1) / W] and v in [y / H, (y + 1) / H]; its centre is at
 // ((x + 0.5) / W, (y + 0.5) / H), where the lookup returns the texel's value exactly.
+#include <algorithm>
 #include <cmath>
 
 #include "shadelab/scene/scene.h"
@@ -9,12 +10,13 @@ namespace shadelab {
 
 namespace {
 
-// Integer part of x modulo n, in [0, n), for any finite x.
-int wrap(double x, int n) {
-  double m = std::fmod(x, static_cast<double>(n));
-  if (m < 0.0) m += n;
-  const int i = static_cast<int>(m);
-  return i >= n ? 0 : i;  // fmod may round up to n for tiny negative x
+// The fractional part of x, in [0, 1): where a coordinate lands after wrapping around. 0 for a non-finite x
+// (a degenerate uv upstream) and for |x| >= 2^52, which has no fraction left. Taken before scaling by the
+// image size, so no coordinate (uv_scale 1e308 included) can overflow into a wild index.
+double fraction(double x) {
+  if (!std::isfinite(x)) return 0.0;
+  const double f = x - std::floor(x);
+  return f < 1.0 ? f : 0.0;  // x just below an integer: the difference rounds up to 1
 }
 
 }  // namespace
@@ -22,17 +24,15 @@ int wrap(double x, int n) {
 Rgb sample_texture(const Texture& texture, Vec2 uv) {
   const Image& image = texture.image;
   if (!image.is_valid()) return {};
-  // A non-finite coordinate (a degenerate uv upstream) reads the first texel rather than NaN.
-  const double u = std::isfinite(uv.x) ? uv.x : 0.0;
-  const double v = std::isfinite(uv.y) ? uv.y : 0.0;
-  const double x = u * image.width - 0.5;  // continuous texel coordinate; centres at integers
-  const double y = v * image.height - 0.5;
+  const double x = fraction(uv.x) * image.width - 0.5;  // continuous texel coordinate; centres at integers
+  const double y = fraction(uv.y) * image.height - 0.5;  // in [-0.5, size - 0.5]
   const double x0 = std::floor(x);
   const double y0 = std::floor(y);
   const double fx = x - x0;
   const double fy = y - y0;
-  const int ix0 = wrap(x0, image.width);
-  const int iy0 = wrap(y0, image.height);
+  // x0 is in [-1, width - 1]: -1 is the last column, wrapped.
+  const int ix0 = x0 < 0.0 ? image.width - 1 : std::min(static_cast<int>(x0), image.width - 1);
+  const int iy0 = y0 < 0.0 ? image.height - 1 : std::min(static_cast<int>(y0), image.height - 1);
   const int ix1 = ix0 + 1 == image.width ? 0 : ix0 + 1;
   const int iy1 = iy0 + 1 == image.height ? 0 : iy0 + 1;
   const Rgb top = image.at(ix0, iy0) * (1.0 - fx) + image.at(ix1, iy0) * fx;
