@@ -13,6 +13,7 @@ packages=(
   blender-data
   glslang-tools spirv-tools mesa-vulkan-drivers libvulkan-dev chromium
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
+  parallel slurm-wlm slurm-client munge
 )
 
 # The independent KTX 2 reader of the container tests (tools/containers): npm's ktx-parse, pinned by its
