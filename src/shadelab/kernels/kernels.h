@@ -20,5 +20,7 @@ namespace shadelab::kernel {
 #include "shadelab/kernels/wrapped_diffuse.sl"
 #include "shadelab/kernels/game_shading.sl"
 #include "shadelab/kernels/sh9.sl"
+#include "shadelab/kernels/game_ambient.sl"
+#include "shadelab/kernels/display.sl"
 // clang-format on
 }  // namespace shadelab::kernel
