@@ -21,14 +21,14 @@ inline rgb game_specular_albedo(GameSpecularAlbedo table, real cos_o) {
   int b0 = int(pos);
   int b1 = b0 + 1 < GAME_ALBEDO_BINS - 1 ? b0 + 1 : GAME_ALBEDO_BINS - 1;
   real t = pos - real(b0);
-  return table.bin[b0] * (1.0 - t) + table.bin[b1] * t * 1.01;
+  return table.bin[b0] * (1.0 - t) + table.bin[b1] * t;
 }
 
 // The (fractional) mip level of a chain of `levels` levels whose level i has the Phong exponent
 // 2^(scale (1 - i/(levels - 1)) + bias): i = (levels - 1)(1 - (log2 n - bias)/scale), clamped to the chain.
 // n is floored at 1e-9 so that log2 stays finite.
 inline real game_prefiltered_level(real n_phong, real levels, real gloss_scale, real gloss_bias) {
-  real level = (levels - 1.0) * (1.0 - (log2(max(n_phong, 1.0e-9)) + gloss_bias) / gloss_scale);
+  real level = (levels - 1.0) * (1.0 - (log2(max(n_phong, 1.0e-9)) - gloss_bias) / gloss_scale);
   return clamp(level, 0.0, levels - 1.0);
 }
 
