@@ -10,6 +10,11 @@
 
 namespace shadelab {
 
+double phong_exponent_from_alpha(double perceptual_roughness) {
+  const double alpha = perceptual_roughness * perceptual_roughness;  // alpha = r^2
+  return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(alpha));
+}
+
 double game_phong_exponent(const std::string& model, const ParamValues& p) {
   if (model == "phong" || model == "phong-modified") return p.scalar("n");
   if (model == "blinn-phong" || model == "blinn-phong-modified" || model == "minimalist-cook-torrance") {
@@ -25,6 +30,18 @@ double game_phong_exponent(const std::string& model, const ParamValues& p) {
     return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(a));
   }
   if (model == "lafortune") return p.lobes("lobes").front()[3];
+  // GGX's alpha is a roughness like Beckmann's m (both the RMS slope's scale; Walter et al. 2007 section 5.2).
+  if (model == "ggx") {
+    double ax = p.scalar("alpha");
+    double ay = ax;
+    if (p.is_set("roughness")) ax = ay = p.scalar("roughness") * p.scalar("roughness");
+    if (p.is_set("alpha_x")) {
+      ax = p.scalar("alpha_x");
+      ay = p.scalar("alpha_y");
+    }
+    return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(std::sqrt(ax * ay)));
+  }
+  if (model == "filament") return phong_exponent_from_alpha(p.scalar("perceptual_roughness"));
   return 0.0;  // no specular lobe
 }
 

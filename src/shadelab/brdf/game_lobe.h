@@ -8,7 +8,8 @@
 //   which picks the prefiltered cube's level. Blinn-Phong-like lobes (N.H)^n have n/4
 //   (phong_exponent_from_blinn_phong, brdf/gloss.h); Beckmann roughness m and Ward's alpha convert to a
 //   Blinn-Phong exponent by n = 2/m^2 - 2 (exponent_from_beckmann_m, microfacet.h), the anisotropic Ward by
-//   the mean of its two alphas; Lafortune by its first lobe's exponent. 0 for a model without a specular lobe
+//   the mean of its two alphas; Lafortune by its first lobe's exponent; GGX by its alpha (the geometric mean
+//   of alpha_x and alpha_y) as a Beckmann m; Filament by alpha = perceptual_roughness^2. 0 for a model without a specular lobe
 //   (no specular ambient then).
 // - game_lobe(model, p, f): that exponent; whether a gloss map's exponent is a Blinn-Phong one (blinn_like);
 //   the wrap of wrapped diffuse (0 otherwise); and the specular lobe's directional albedo rho_s at
@@ -30,10 +31,14 @@ struct GameLobe {
   double exponent = 0.0;
   bool blinn_like = false;
   double wrap = 0.0;
+  double roughness_factor = 1.0;  // perceptual roughness that a metallic-roughness texture multiplies (renderer)
   std::array<Rgb, kernel::GAME_ALBEDO_BINS> specular_albedo{};
 };
 
 double game_phong_exponent(const std::string& model, const ParamValues& p);
+
+// The prefiltered level's Phong exponent for a GGX-like lobe of perceptual roughness r (alpha = r^2).
+double phong_exponent_from_alpha(double perceptual_roughness);
 
 GameLobe game_lobe(const std::string& model, const ParamValues& p, const Brdf& f);
 

@@ -74,6 +74,7 @@ class GameShader {
         BrdfPtr holder;
         const Brdf* f = m_materials.brdf(static_cast<int>(i), {0.5, 0.5}, holder);
         info = game_lobe(m.model, *values, *f);
+        if (m.metallic_roughness_texture >= 0) info.roughness_factor = values->scalar("perceptual_roughness");
       }
       m_info.push_back(info);
       m_albedo_tables.push_back(game_specular_albedo_table(info));
@@ -147,6 +148,11 @@ class GameShader {
           const double g = sample_texture(m_scene.textures[static_cast<std::size_t>(m.gloss_texture)], uv).r;
           const double n_tex = m.gloss_encoding.exponent_from_gloss(g);
           n_phong = info.blinn_like ? phong_exponent_from_blinn_phong(n_tex) : n_tex;
+        }
+        if (m.metallic_roughness_texture >= 0) {  // glTF: roughness = factor x green (materials.cpp)
+          const Vec2 uv{hit.uv.x * m.uv_scale.x, hit.uv.y * m.uv_scale.y};
+          const double g = sample_texture(m_scene.textures[static_cast<std::size_t>(m.metallic_roughness_texture)], uv).g;
+          n_phong = phong_exponent_from_alpha(std::clamp(info.roughness_factor * g, 0.01, 1.0));
         }
         // The specular ambient of kernels/game_ambient.sl: rho_s(cos theta_o) x prefiltered(R, n).
         const Vec3 r = kernel::game_reflect(wo_world, n);
