@@ -162,6 +162,7 @@ void run_irradiance(const BakeOptions& o) {
   const fs::path out = o.out.empty() ? default_out(o, "_irradiance.exr") : fs::path(o.out);
   check_layout(o, out);
   check_bake_outputs(o, {{"--out", out}});
+  work_begins();
   const CubeMap env = load_environment(o);
   ProgressBar bar("irradiance", o.progress);
   ConvolveOptions opts;
@@ -230,6 +231,7 @@ void run_sh(const BakeOptions& o) {
     require_extension("--out", o.out, {".json"}, "the SH9 coefficients (JSON)");
     check_bake_outputs(o, {{"--out", o.out}});
   }
+  work_begins();
   const CubeMap env = load_environment(o);
   Sh9 sh = project_sh9(env);
   // D3DX-style punctual lights (sh.h): each adds the projection of pi c delta(w - d), scaled by 16/17 with
@@ -311,6 +313,7 @@ void run_specular(const BakeOptions& o) {
     return v;
   }();
   check_bake_outputs(o, planned);
+  work_begins();
   const CubeMap env = load_environment(o);
   PrefilterOptions p;
   p.size = size;
@@ -352,9 +355,10 @@ void run_convert(const BakeOptions& o) {
   refuse_options(o, "convert", {"--units"}, "conversion changes no values");
   check_layout(o, o.out);
   check_bake_outputs(o, {{"--out", o.out}});
+  if (o.has("--size")) check_size("--size", o.size, 4096);
+  work_begins();
   CubeMap env = load_environment(o);
   if (o.has("--size")) {
-    check_size("--size", o.size, 4096);
     // Resample through the lat-long form with area filtering when the size changes.
     if (o.size != env.size) env = latlong_to_cube(cube_to_latlong(env, 4 * std::max(env.size, o.size)), o.size);
   }
