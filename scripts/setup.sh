@@ -11,6 +11,9 @@ packages=(
   libcairo2-dev fonts-dejavu-core
   libembree-dev libtinyobjloader-dev libtinygltf-dev
   blender-data
+  glslang-tools spirv-tools mesa-vulkan-drivers libvulkan-dev chromium
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
+  clang-14 libclang-rt-14-dev llvm-14
 )
 
 missing=()

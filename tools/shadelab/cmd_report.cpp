@@ -131,8 +131,12 @@ MaskedFigures masked(const Image& game, const Image& ref, const std::vector<int>
       se += (a - b) * (a - b);
       rel += (a - b) * (a - b) / (b * b + default_relative_mse_epsilon);  // as compare_images (metrics.h)
     }
-    lg += luminance({game.data[3 * i], game.data[3 * i + 1], game.data[3 * i + 2]});
-    lr += luminance({ref.data[3 * i], ref.data[3 * i + 1], ref.data[3 * i + 2]});
+    const auto pixel = [i](const Image& img) {
+      return Rgb{static_cast<double>(img.data[3 * i]), static_cast<double>(img.data[3 * i + 1]),
+                 static_cast<double>(img.data[3 * i + 2])};
+    };
+    lg += luminance(pixel(game));
+    lr += luminance(pixel(ref));
   }
   if (m.pixels > 0) {
     m.rmse = std::sqrt(se / (3.0 * m.pixels));

@@ -32,10 +32,20 @@ BlinnPhong::BlinnPhong(const Rgb& kd, const Rgb& ks, double n, Normalization nor
                   lobe_probability(normalization == Normalization::none ? kd.average() * pi : kd.average(),
                                    ks.average() * normalization_factor(n, normalization, modified) * 8.0 * pi /
                                        (n + 2.0))),
-      m_k(kernel::blinn_phong_prepare({kd, ks, n, static_cast<int>(normalization), modified ? 1 : 0})),
+      m_kp{kd, ks, n, static_cast<int>(normalization), modified ? 1 : 0},
+      m_k(kernel::blinn_phong_prepare(m_kp)),
       m_ks(ks),
       m_n(n),
       m_modified(modified) {}
+
+std::optional<KernelBinding> BlinnPhong::kernel_binding() const {
+  return KernelBinding{"blinn_phong", {}}
+      .add("kd", m_kp.kd)
+      .add("ks", m_kp.ks)
+      .add("n", m_kp.n)
+      .add("normalization", m_kp.normalization)
+      .add("modified", m_kp.modified);
+}
 
 double BlinnPhong::specular_pdf(const Vec3& wi, const Vec3& wo) const {
   const Vec3 h = half_vector(wi, wo);

@@ -23,6 +23,7 @@ class BlinnPhong final : public LayeredBrdf {
 
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::blinn_phong_eval(m_k, wi, wo); }
   bool is_reciprocal() const override { return m_modified || m_ks.is_black(); }
+  std::optional<KernelBinding> kernel_binding() const override;
   static double normalization_factor(double n, Normalization normalization, bool modified);
 
  protected:
@@ -30,6 +31,7 @@ class BlinnPhong final : public LayeredBrdf {
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 
  private:
+  kernel::BlinnPhongParams m_kp;
   kernel::BlinnPhongState m_k;
   Rgb m_ks;
   double m_n;

@@ -12,7 +12,9 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "shadelab/color/rgb.h"
 #include "shadelab/core/vec.h"
@@ -23,6 +25,33 @@ struct BrdfSample {
   Vec3 wi{0.0, 0.0, 1.0};
   double pdf = 0.0;  // per unit solid angle
   Rgb weight;        // f cos(theta_i) / pdf
+};
+
+// The shading kernel a model's eval is (src/shadelab/kernels/*.sl): the kernel's name K (the .sl text defines
+// `KState K_prepare(KParams)` and `rgb K_eval(KState, vec3 wi, vec3 wo)`) and the values of the KParams
+// fields, in declaration order, taken from the same KParams the C++ eval was prepared from. The shader
+// exporter bakes these values into a shader (or packs them into a uniform block); it checks every name and
+// size against the struct it reads from the kernel text, so a binding that drifts from the kernel fails there.
+struct KernelField {
+  std::string name;
+  std::vector<double> values;  // real or int: 1 value; rgb: 3; real[N]: N
+};
+
+struct KernelBinding {
+  std::string kernel;
+  std::vector<KernelField> fields;
+
+  KernelBinding& add(std::string name, double v) { return add_values(std::move(name), {v}); }
+  KernelBinding& add(std::string name, int v) { return add_values(std::move(name), {static_cast<double>(v)}); }
+  KernelBinding& add(std::string name, const Rgb& c) { return add_values(std::move(name), {c.r, c.g, c.b}); }
+  template <std::size_t N>
+  KernelBinding& add(std::string name, const double (&a)[N]) {
+    return add_values(std::move(name), std::vector<double>(a, a + N));
+  }
+  KernelBinding& add_values(std::string name, std::vector<double> v) {
+    fields.push_back({std::move(name), std::move(v)});
+    return *this;
+  }
 };
 
 class Brdf {
@@ -44,6 +73,10 @@ class Brdf {
   // The albedo of the model's Lambertian (view-independent) part, pi times its constant f: what a game
   // multiplies by diffuse irradiance / pi. Black for a model without one.
   virtual Rgb diffuse_albedo() const { return {}; }
+
+  // The kernel this model's eval is and its parameter values (see KernelBinding); every registered model
+  // has one (the shader tests check), test doubles need none.
+  virtual std::optional<KernelBinding> kernel_binding() const { return std::nullopt; }
 };
 
 using BrdfPtr = std::unique_ptr<const Brdf>;

@@ -42,6 +42,22 @@ CookTorrance::CookTorrance(const Params& p)
       m_p(p),
       m_k(kernel::cook_torrance_prepare(kernel_params(p))) {}
 
+std::optional<KernelBinding> CookTorrance::kernel_binding() const {
+  const kernel::CookTorranceParams& p = m_k.p;  // the parameters m_k was prepared from
+  return KernelBinding{"cook_torrance", {}}
+      .add("kd", p.kd)
+      .add("ks", p.ks)
+      .add("m", p.m)
+      .add("n", p.n)
+      .add("d", p.d)
+      .add("g", p.g)
+      .add("f", p.f)
+      .add("ior", p.ior)
+      .add("k", p.k)
+      .add("f0", p.f0)
+      .add("form", p.form);
+}
+
 Rgb CookTorrance::fresnel(double cos_i) const { return kernel::cook_torrance_fresnel(m_k.p, cos_i); }
 
 double CookTorrance::distribution(double cos_h) const { return kernel::cook_torrance_distribution(m_k.p, cos_h); }

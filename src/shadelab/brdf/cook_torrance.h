@@ -43,6 +43,7 @@ class CookTorrance final : public LayeredBrdf {
 
   explicit CookTorrance(const Params& p);
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::cook_torrance_eval(m_k, wi, wo); }
+  std::optional<KernelBinding> kernel_binding() const override;
 
   Rgb fresnel(double cos_i) const;
   double distribution(double cos_h) const;

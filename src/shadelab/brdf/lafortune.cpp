@@ -40,6 +40,18 @@ Lafortune::Lafortune(const Rgb& kd, const Rgb& ks, std::vector<Lobe> lobes)
       m_lobes(std::move(lobes)),
       m_k(kernel::lafortune_prepare(kernel_params(kd, ks, m_lobes))) {}
 
+std::optional<KernelBinding> Lafortune::kernel_binding() const {
+  const kernel::LafortuneParams& p = m_k.p;  // the parameters m_k was prepared from
+  return KernelBinding{"lafortune", {}}
+      .add("kd", p.kd)
+      .add("ks", p.ks)
+      .add("count", p.count)
+      .add("cx", p.cx)
+      .add("cy", p.cy)
+      .add("cz", p.cz)
+      .add("n", p.n);
+}
+
 Lafortune::Axes Lafortune::axes(const Vec3& wo) const {
   Axes a;
   a.axis.resize(m_lobes.size());

@@ -31,6 +31,7 @@ class Lafortune final : public LayeredBrdf {
   // lobes: 1 .. kernel::LAFORTUNE_MAX_LOBES (the registry refuses more).
   Lafortune(const Rgb& kd, const Rgb& ks, std::vector<Lobe> lobes);
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::lafortune_eval(m_k, wi, wo); }
+  std::optional<KernelBinding> kernel_binding() const override;
 
  protected:
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;

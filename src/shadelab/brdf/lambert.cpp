@@ -6,6 +6,10 @@
 
 namespace shadelab {
 
+std::optional<KernelBinding> Lambert::kernel_binding() const {
+  return KernelBinding{"lambert", {}}.add("kd", m_kp.kd);
+}
+
 Rgb Lambert::eval(const Vec3& wi, const Vec3& wo) const {
   return kernel::lambert_eval(m_k, wi, wo);  // kd / pi above the horizon
 }

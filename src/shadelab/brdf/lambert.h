@@ -10,14 +10,16 @@ namespace shadelab {
 
 class Lambert final : public Brdf {
  public:
-  explicit Lambert(const Rgb& kd) : m_kd(kd), m_k(kernel::lambert_prepare({kd})) {}
+  explicit Lambert(const Rgb& kd) : m_kd(kd), m_kp{kd}, m_k(kernel::lambert_prepare(m_kp)) {}
   Rgb eval(const Vec3& wi, const Vec3& wo) const override;
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
   Rgb diffuse_albedo() const override { return m_kd; }
+  std::optional<KernelBinding> kernel_binding() const override;
 
  private:
   Rgb m_kd;
+  kernel::LambertParams m_kp;
   kernel::LambertState m_k;
 };
 

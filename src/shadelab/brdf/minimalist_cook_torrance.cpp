@@ -10,7 +10,14 @@
 namespace shadelab {
 
 MinimalistCookTorrance::MinimalistCookTorrance(const Rgb& kd, const Rgb& ks, double n)
-    : LayeredBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())), m_k(kernel::minimalist_cook_torrance_prepare({kd, ks, n})), m_n(n) {}
+    : LayeredBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())),
+      m_kp{kd, ks, n},
+      m_k(kernel::minimalist_cook_torrance_prepare(m_kp)),
+      m_n(n) {}
+
+std::optional<KernelBinding> MinimalistCookTorrance::kernel_binding() const {
+  return KernelBinding{"minimalist_cook_torrance", {}}.add("kd", m_kp.kd).add("ks", m_kp.ks).add("n", m_kp.n);
+}
 
 double MinimalistCookTorrance::specular_pdf(const Vec3& wi, const Vec3& wo) const {
   const Vec3 h = half_vector(wi, wo);

@@ -19,12 +19,14 @@ class MinimalistCookTorrance final : public LayeredBrdf {
   Rgb eval(const Vec3& wi, const Vec3& wo) const override {
     return kernel::minimalist_cook_torrance_eval(m_k, wi, wo);
   }
+  std::optional<KernelBinding> kernel_binding() const override;
 
  protected:
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 
  private:
+  kernel::MinimalistCookTorranceParams m_kp;
   kernel::MinimalistCookTorranceState m_k;
   double m_n;
 };

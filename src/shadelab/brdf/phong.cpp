@@ -30,13 +30,22 @@ Phong::Phong(const Rgb& kd, const Rgb& ks, double n, Normalization normalization
     : LayeredBrdf(normalization == Normalization::exact ? kd * inv_pi : kd,
                   lobe_probability(normalization == Normalization::exact ? kd.average() : kd.average() * pi,
                                    ks.average() * normalization_factor(n, normalization, modified) * lobe_albedo(n))),
-      m_k(kernel::phong_prepare({kd, ks, n,
-                                 normalization == Normalization::none ? kernel::PHONG_NORMALIZATION_NONE
-                                                                      : kernel::PHONG_NORMALIZATION_EXACT,
-                                 modified ? 1 : 0})),
+      m_kp{kd, ks, n,
+           normalization == Normalization::none ? kernel::PHONG_NORMALIZATION_NONE : kernel::PHONG_NORMALIZATION_EXACT,
+           modified ? 1 : 0},
+      m_k(kernel::phong_prepare(m_kp)),
       m_ks(ks),
       m_n(n),
       m_modified(modified) {}
+
+std::optional<KernelBinding> Phong::kernel_binding() const {
+  return KernelBinding{"phong", {}}
+      .add("kd", m_kp.kd)
+      .add("ks", m_kp.ks)
+      .add("n", m_kp.n)
+      .add("normalization", m_kp.normalization)
+      .add("modified", m_kp.modified);
+}
 
 double Phong::specular_pdf(const Vec3& wi, const Vec3& wo) const {
   const Vec3 r = reflect(wo, normal);

@@ -23,6 +23,7 @@ class Phong final : public LayeredBrdf {
 
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::phong_eval(m_k, wi, wo); }
   bool is_reciprocal() const override { return m_modified || m_ks.is_black(); }
+  std::optional<KernelBinding> kernel_binding() const override;
   // The constant N in front of the lobe.
   static double normalization_factor(double n, Normalization normalization, bool modified);
 
@@ -31,6 +32,7 @@ class Phong final : public LayeredBrdf {
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 
  private:
+  kernel::PhongParams m_kp;
   kernel::PhongState m_k;
   Rgb m_ks;
   double m_n;

@@ -9,9 +9,19 @@
 namespace shadelab {
 
 Ward::Ward(const Rgb& kd, const Rgb& ks, double alpha_x, double alpha_y)
-    : LayeredBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())), m_k(kernel::ward_prepare({kd, ks, alpha_x, alpha_y})),
+    : LayeredBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())),
+      m_kp{kd, ks, alpha_x, alpha_y},
+      m_k(kernel::ward_prepare(m_kp)),
       m_ax(alpha_x),
       m_ay(alpha_y) {}
+
+std::optional<KernelBinding> Ward::kernel_binding() const {
+  return KernelBinding{"ward", {}}
+      .add("kd", m_kp.kd)
+      .add("ks", m_kp.ks)
+      .add("alpha_x", m_kp.alpha_x)
+      .add("alpha_y", m_kp.alpha_y);
+}
 
 double Ward::slope_term(const Vec3& h) const { return kernel::ward_slope_term(h, m_ax, m_ay); }
 

@@ -25,6 +25,7 @@ class Ward final : public LayeredBrdf {
  public:
   Ward(const Rgb& kd, const Rgb& ks, double alpha_x, double alpha_y);
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::ward_eval(m_k, wi, wo); }
+  std::optional<KernelBinding> kernel_binding() const override;
 
   // The exponent's argument tan^2(theta_h)(cos^2/ax^2 + sin^2/ay^2) for a unit half vector h.
   double slope_term(const Vec3& h) const;
@@ -34,6 +35,7 @@ class Ward final : public LayeredBrdf {
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 
  private:
+  kernel::WardParams m_kp;
   kernel::WardState m_k;
   double m_ax;
   double m_ay;

@@ -6,6 +6,10 @@
 
 namespace shadelab {
 
+std::optional<KernelBinding> WrappedDiffuse::kernel_binding() const {
+  return KernelBinding{"wrapped_diffuse", {}}.add("kd", m_kp.kd).add("w", m_kp.w);
+}
+
 Rgb WrappedDiffuse::eval(const Vec3& wi, const Vec3& wo) const { return kernel::wrapped_diffuse_eval(m_k, wi, wo); }
 
 double WrappedDiffuse::pdf(const Vec3& wi, const Vec3& wo) const {

@@ -19,17 +19,19 @@ namespace shadelab {
 
 class WrappedDiffuse final : public Brdf {
  public:
-  WrappedDiffuse(const Rgb& kd, double w) : m_kd(kd), m_w(w), m_k(kernel::wrapped_diffuse_prepare({kd, w})) {}
+  WrappedDiffuse(const Rgb& kd, double w) : m_kd(kd), m_w(w), m_kp{kd, w}, m_k(kernel::wrapped_diffuse_prepare(m_kp)) {}
   Rgb eval(const Vec3& wi, const Vec3& wo) const override;
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
   bool is_reciprocal() const override { return m_w == 0.0 || m_kd.is_black(); }
   Rgb diffuse_albedo() const override { return m_kd; }  // the wrap itself is applied by SH band factors
   double wrap() const { return m_w; }
+  std::optional<KernelBinding> kernel_binding() const override;
 
  private:
   Rgb m_kd;
   double m_w;
+  kernel::WrappedDiffuseParams m_kp;
   kernel::WrappedDiffuseState m_k;
 };
 

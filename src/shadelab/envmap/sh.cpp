@@ -7,14 +7,16 @@
 #include <vector>
 
 #include "shadelab/envmap/latlong.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
+// The basis and the evaluation are the kernel kernels/sh9.sl, the text exported shaders use.
 ShBasis sh9_basis(const Vec3& n) {
-  const double x = n.x, y = n.y, z = n.z;
-  return {sh_c0,
-          -sh_c1 * y, sh_c1 * z, -sh_c1 * x,
-          sh_c2 * x * y, -sh_c2 * y * z, sh_c3 * (3.0 * z * z - 1.0), -sh_c2 * x * z, sh_c4 * (x * x - y * y)};
+  const kernel::Sh9Basis b = kernel::sh9_basis(n);
+  ShBasis out;
+  for (std::size_t i = 0; i < 9; ++i) out[i] = b.y[i];
+  return out;
 }
 
 BandFactors sh_window_factors(ShWindow window) {
@@ -142,10 +144,9 @@ Sh9 project_sh9(const std::function<Rgb(const Vec3&)>& f, int size) {
 }
 
 Rgb sh9_evaluate(const Sh9& sh, const Vec3& n, const BandFactors& factors) {
-  const ShBasis b = sh9_basis(n);
-  Rgb sum;
-  for (std::size_t i = 0; i < 9; ++i) sum += sh.c[i] * (b[i] * factors[static_cast<std::size_t>(sh_band(static_cast<int>(i)))]);
-  return sum;
+  kernel::Sh9Coefficients k;
+  for (std::size_t i = 0; i < 9; ++i) k.c[i] = sh.c[i];
+  return kernel::sh9_evaluate(k, n, factors[0], factors[1], factors[2]);
 }
 
 Sh9 sh9_scale_bands(const Sh9& sh, const BandFactors& factors) {

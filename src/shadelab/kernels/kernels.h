@@ -18,5 +18,7 @@ namespace shadelab::kernel {
 #include "shadelab/kernels/ward.sl"
 #include "shadelab/kernels/lafortune.sl"
 #include "shadelab/kernels/wrapped_diffuse.sl"
+#include "shadelab/kernels/game_shading.sl"
+#include "shadelab/kernels/sh9.sl"
 // clang-format on
 }  // namespace shadelab::kernel

@@ -8,7 +8,8 @@
 // - types: real (double here, float in shaders), int, bool, vec3 (directions), rgb (colours; vec3/float3 in
 //   shaders), and structs of those. Colours and directions are different types in C++, so mixing them is a
 //   compile error here even though the shading languages would allow it.
-// - constructors: vec3(x, y, z), vec3(s) (all three = s), rgb(r, g, b), rgb(s); no other initialisers.
+// - constructors: vec3(x, y, z), vec3(s) (all three = s), rgb(r, g, b), rgb(s); no other initialisers;
+//   conversions int(x) (truncation) and real(i).
 // - operators: + - * / on vec3 and rgb component-wise and with real scalars, unary minus; [] component
 //   access; .x .y .z on vec3 and .r .g .b on rgb; no swizzles.
 // - functions: sqrt exp exp2 log pow abs floor sin cos acos min max clamp mix atan2 erf, dot length normalize
@@ -16,7 +17,8 @@
 //   out-parameters, defaults, overloads, recursion or pointers.
 // - literals: always with a decimal point for reals (GLSL ES has no implicit int -> float conversion);
 //   no `const` on locals (GLSL ES requires constant initialisers there); constants at file scope are
-//   `const real NAME = value;` or `const int NAME = value;`.
+//   `const real NAME = value;` or `const int NAME = value;`, and tables `const real NAME[N] = {a, b, ...};`
+//   (one-dimensional: GLSL ES 3.00 has no arrays of arrays; the exporter writes GLSL's float[N](...)).
 // - pow(x, y) only where x > 0 (GLSL leaves other cases undefined); every division is guarded where the
 //   divisor can vanish, with the reason at the guard.
 // Compiling every kernel as C++ (here) and in every shading language (the shader tests) enforces the

@@ -14,6 +14,7 @@
 #include "shadelab/envmap/irradiance.h"
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/envmap/sh.h"
+#include "shadelab/kernels/kernels.h"
 #include "shadelab/brdf/microfacet.h"
 #include "shadelab/brdf/wrapped_diffuse.h"
 #include "shadelab/render/accel.h"
@@ -163,9 +164,11 @@ class GameShader {
           if (m_accel.occluded(shadow)) continue;
         }
         const Rgb colour_game = in.irradiance_perp * inv_pi;  // the game unit: E_perp = pi x colour
-        // The game shading equation: L = pi f c cos (drop_pi: the bug of forgetting the pi).
-        const double unit = m_options.drop_pi ? 1.0 : pi;
-        l += f->eval(wi, wo) * colour_game * (unit * wi.z);
+        // The game shading equation L = pi f c cos, the kernel kernels/game_shading.sl; drop_pi is the bug of
+        // forgetting the pi: the game colour used as if it were the irradiance.
+        const Rgb fr = f->eval(wi, wo);
+        l += m_options.drop_pi ? kernel::punctual_radiometric(fr, colour_game, wi.z)
+                               : kernel::punctual_game(fr, colour_game, wi.z);
       }
     }
     if (m_env.has_light() || m_has_sh_lights) {

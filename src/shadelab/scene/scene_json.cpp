@@ -447,7 +447,7 @@ class Parser {
       auto image = read_budgeted(path, &info);
       if (!image) throw Failure{o.node().child_pointer("file"), image.error().message};
       charge_image(Node(o.node().value().at("file"), o.node().child_pointer("file")), image->pixel_count() * 12);
-      t.image = std::move(image).value();  // a move: std::move(*image) would copy (operator* is const)
+      t.image = std::move(image).value();
       if (t.data && info.format == "png") {
         // read_image decoded the PNG as sRGB colour; a data texture holds the stored code / max code.
         // linear_to_srgb inverts the decode; rounding to the nearest code makes the inversion exact.
@@ -902,7 +902,7 @@ class Parser {
       for (float v : env.latlong.data) peak = std::max(peak, std::abs(v));
       if (!(static_cast<double>(peak) * env.scale <= max_light_value)) {
         throw Failure{o.has("scale") ? o.node().child_pointer("scale") : file_node.pointer(),
-                      "the brightest texel of '" + printable(path.string()) + "' (" + format_number(peak) +
+                      "the brightest texel of '" + printable(path.string()) + "' (" + format_number(static_cast<double>(peak)) +
                           ") times the scale is " + format_number(static_cast<double>(peak) * env.scale) +
                           ", above the largest supported light value " + format_number(max_light_value)};
       }

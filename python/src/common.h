@@ -1,0 +1,135 @@
+// Shared pieces of the Python module: errors as ValueError, NumPy array conversions that name the argument,
+// images between shadelab::Image and float32 (H, W, 3) arrays. Only glue: every formula is the library's.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shadelab/color/rgb.h"
+#include "shadelab/core/error.h"
+#include "shadelab/core/vec.h"
+#include "shadelab/envmap/cubemap.h"
+#include "shadelab/image/image.h"
+
+namespace shadelab::python {
+
+namespace py = pybind11;
+
+// Bad input from Python: a ValueError with one line. Where the library makes the message it is the line
+// the CLI prints after "shadelab: "; checks of the module's own arguments name the argument as the CLI
+// names its option ("theta_deg: 95 is out of range [0, 90) degrees" for "--theta: ...").
+[[noreturn]] void fail(const std::string& message);
+
+template <typename T>
+T unwrap(Result<T> r, const std::string& prefix = {}) {
+  if (!r) fail(prefix + r.error().message);
+  return std::move(r).value();
+}
+
+// A number as the CLI prints it (fmt's "{}": the shortest text that reads back to the same double).
+std::string number_text(double v);
+// "(4, 2)": the shape of an array as NumPy prints it.
+std::string shape_text(const py::array& a);
+
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+// Any array-like of numbers as a C-contiguous float64 array (no copy when it already is one).
+DoubleArray to_double_array(py::handle obj, const std::string& name);
+
+// Directions or other 3-vectors: an (N, 3) array, or one (3,) vector (single = true).
+struct Vectors {
+  DoubleArray array;
+  const double* data = nullptr;
+  py::ssize_t count = 0;
+  bool single = false;
+  Vec3 at(py::ssize_t i) const { return {data[3 * i], data[3 * i + 1], data[3 * i + 2]}; }
+};
+Vectors to_vectors(py::handle obj, const std::string& name);
+
+// Two sets of vectors paired row by row; a single vector (or one row) pairs with every row of the other.
+struct Pairs {
+  Vectors a;
+  Vectors b;
+  py::ssize_t count = 0;
+  py::ssize_t step_a = 1;  // 0 when a is broadcast
+  py::ssize_t step_b = 1;
+  bool single = false;  // both given as (3,): the result drops the row axis
+};
+Pairs to_pairs(py::handle a, const std::string& name_a, py::handle b, const std::string& name_b);
+
+// The CLI's direction rule (cli_common.cpp parse_direction): v / |v|; false for a zero or non-finite vector.
+// A vector whose squared length is within 4 ulp of 1 is used as given: dividing it by its length would
+// move each component by at most an ulp, and skipping the square root and three divisions per direction
+// keeps eval within a few percent of a plain C++ loop (bench/python_eval_overhead.py). Every other vector
+// is divided exactly as the CLI divides it, so the CLI and Python give the same bits for it.
+inline bool normalize_direction(Vec3& v) {
+  const double n2 = dot(v, v);
+  if (std::abs(n2 - 1.0) <= 4.0 * std::numeric_limits<double>::epsilon()) return true;
+  const double len = std::sqrt(n2);
+  if (!(len > 0.0) || !std::isfinite(len)) return false;
+  v = v / len;
+  return true;
+}
+// The loop of eval, pdf and sample: body(a, b, i) for each pair i, with a and b first copied out of the
+// arrays into small buffers (chunks of 256 pairs) and checked by check_a / check_b, which may change them
+// (normalize) and return false to stop. Copying a chunk ahead, rather than each pair just before the call,
+// keeps the model's loads of wi and wo away from the stores that made them (a store-to-load forwarding
+// stall when a model reads x and y with one 16-byte load). Returns -1, or the array row where a check
+// failed, with *which = 0 for a, 1 for b. Runs without the GIL: no Python calls inside.
+template <typename CheckA, typename CheckB, typename Body>
+py::ssize_t for_each_pair(const Pairs& p, CheckA check_a, CheckB check_b, Body body, int* which) {
+  constexpr py::ssize_t chunk = 256;
+  Vec3 buf_a[chunk];
+  Vec3 buf_b[chunk];
+  for (py::ssize_t start = 0; start < p.count; start += chunk) {
+    const py::ssize_t m = std::min(chunk, p.count - start);
+    for (py::ssize_t j = 0; j < m; ++j) {
+      const py::ssize_t ra = (start + j) * p.step_a;
+      const py::ssize_t rb = (start + j) * p.step_b;
+      buf_a[j] = p.a.at(ra);
+      buf_b[j] = p.b.at(rb);
+      if (!check_a(buf_a[j])) return *which = 0, ra;
+      if (!check_b(buf_b[j])) return *which = 1, rb;
+    }
+    for (py::ssize_t j = 0; j < m; ++j) body(buf_a[j], buf_b[j], start + j);
+  }
+  return -1;
+}
+
+// "wi: row 3 (0, 0, 0) is not a direction (zero length or not finite)".
+[[noreturn]] void fail_direction(const std::string& name, const Vectors& v, py::ssize_t row);
+
+// An integer (int or a NumPy integer; not bool, not float) as long long, or a ValueError naming it.
+long long to_integer(py::handle v, const std::string& name);
+
+// A scalar or a 1-D sequence of numbers; *scalar tells which was given.
+std::vector<double> to_numbers(py::handle obj, const std::string& name, bool* scalar = nullptr);
+
+// The caller's output array for `out=`: writable, C-contiguous float64 of exactly this shape.
+double* output_buffer(py::handle out, const std::vector<py::ssize_t>& shape, const std::string& name);
+
+py::tuple rgb_tuple(const Rgb& c);
+py::array_t<double> rgb_array(const Rgb& c);
+
+// str or os.PathLike -> the path as text; is_path tells whether obj is one.
+bool is_path(py::handle obj);
+std::string path_text(py::handle obj);
+
+// An image from (H, W, 3), (H, W, 1) or (H, W) numbers (grey is copied to R, G and B). With `finite`,
+// a NaN or infinite value is an error naming the pixel.
+Image to_image(py::handle obj, const std::string& name, bool finite);
+// A float32 (H, W, 3) array that owns the image's pixels (no copy).
+py::array_t<float> image_array(Image image);
+// Six faces as one float32 (6, S, S, 3) array, in the OpenGL order +X, -X, +Y, -Y, +Z, -Z.
+py::array_t<float> cube_array(const CubeMap& cube);
+
+}  // namespace shadelab::python
