@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every libFuzzer harness (fuzz/README.md) for SECONDS each (default 25) with ASan + UBSan, from the
+# Runs every libFuzzer harness (fuzz/README.md) for SECONDS each (default 30) with ASan + UBSan, from the
 # committed seed corpus, two at a time (FUZZ_JOBS, default: the number of cores). Usage:
 #   bash scripts/fuzz.sh [SECONDS] [HARNESS...]      e.g. bash scripts/fuzz.sh 600 scene cli
 # Builds the sanitize preset's fuzz targets first (nothing to do when they are built). A crash, a hang
@@ -9,7 +9,7 @@
 # New inputs the fuzzer finds interesting go to build/sanitize/fuzz-corpus/<harness> (not committed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds=${1:-25}
+seconds=${1:-30}
 shift || true
 all=(scene obj gltf glb exr hdr png ktx cli)
 harnesses=("$@")
