@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include "bindings.h"
 #include "common.h"
@@ -168,7 +169,14 @@ ShWindow parse_window(const std::string& w) {
 // The environment as a cube: a file or an array, a 2:1 lat-long (resampled to input_size faces) or a cube
 // cross, or six faces as a (6, S, S, 3) array. Non-finite values in an array are errors; a file's are
 // replaced by 0 with a warning (read_image's rule, as the CLI).
-CubeMap environment(py::handle image, py::handle input_size) {
+// The environment as the bakes read it: a 2:1 lat-long without input_size stays a lat-long, which the bakes
+// use over its own texels (environment_sh9, environment_irradiance: as the CLI); anything else a cube map.
+struct Environment {
+  std::optional<Image> latlong;
+  CubeMap cube;
+};
+
+Environment environment(py::handle image, py::handle input_size) {
   int size = -1;
   if (!input_size.is_none()) {
     const long long s = to_integer(input_size, "input_size");
@@ -182,7 +190,8 @@ CubeMap environment(py::handle image, py::handle input_size) {
     ReadInfo info;
     const Image img = read(p, &info);
     warn_repaired(p, info);
-    return unwrap(environment_cube(img, size), p + ": ");
+    if (size == -1 && img.is_valid() && img.width == 2 * img.height) return {img, {}};
+    return {std::nullopt, unwrap(environment_cube(img, size), p + ": ")};
   }
   const FloatArray arr = FloatArray::ensure(image);
   if (!arr) PyErr_Clear();
@@ -202,10 +211,11 @@ CubeMap environment(py::handle image, py::handle input_size) {
         }
       }
     }
-    return cube;
+    return {std::nullopt, cube};
   }
   const Image img = to_image(image, "image", true);
-  return unwrap(environment_cube(img, size), "image: ");
+  if (size == -1 && img.is_valid() && img.width == 2 * img.height) return {img, {}};
+  return {std::nullopt, unwrap(environment_cube(img, size), "image: ")};
 }
 
 py::array_t<double> sh_array(const Sh9& sh) {
@@ -233,13 +243,13 @@ py::object bake_sh(py::handle image, const std::string& units_name, const std::s
                    py::handle input_size, bool details) {
   const RadianceUnits units = parse_units(units_name);
   const ShWindow window = parse_window(window_name);
-  const CubeMap env = environment(image, input_size);
+  const Environment env = environment(image, input_size);
   Sh9 sh;
   Sh9 irr;
   const BandFactors factors = sh9_irradiance_factors(units, window);
   {
     py::gil_scoped_release release;
-    sh = project_sh9(env);
+    sh = env.latlong ? unwrap(environment_sh9(*env.latlong), "image: ") : project_sh9(env.cube);
     irr = sh9_scale_bands(sh, factors);
   }
   if (!details) return sh_array(irr);
@@ -262,11 +272,11 @@ py::array_t<float> bake_irradiance(py::handle image, int size, const std::string
   if (layout != "faces" && layout != "hcross" && layout != "vcross" && layout != "latlong") {
     fail("layout: '" + layout + "' is not one of faces | hcross | vcross | latlong");
   }
-  const CubeMap env = environment(image, input_size);
+  const Environment env = environment(image, input_size);
   CubeMap e;
   {
     py::gil_scoped_release release;
-    e = irradiance_cube(env, size, units);
+    e = env.latlong ? unwrap(environment_irradiance(*env.latlong, size, units), "image: ") : irradiance_cube(env.cube, size, units);
   }
   if (layout == "faces") return cube_array(e);
   if (layout == "hcross") return image_array(cube_to_cross(e, CrossLayout::horizontal));
@@ -307,8 +317,8 @@ the figures of `shadelab compare --json` (docs/compare.md). heatmap=True adds th
         R"(bake_sh(image, *, units='game', window='none', input_size=None, details=False) -> ndarray (9, 3)
 
 Nine RGB spherical-harmonic irradiance coefficients of an environment: a path, a 2:1 lat-long or a cube cross
-as (H, W, 3), or six faces as (6, S, S, 3) in the order +X, -X, +Y, -Y, +Z, -Z. A lat-long is first resampled
-to a cube of input_size faces (default: a power of two near width / 4, at most 512).
+as (H, W, 3), or six faces as (6, S, S, 3) in the order +X, -X, +Y, -Y, +Z, -Z. A lat-long is projected over its
+own texels, or with input_size first resampled to a cube of input_size faces.
 
 Convention: real SH with the Condon-Shortley phase, z polar axis, in Sloan's order Y00, Y1-1, Y10, Y11, Y2-2,
 Y2-1, Y20, Y21, Y22, world axes (+Y up). units='game': sum_i c_i Y_i(n) is E/pi, the exit radiance of a
@@ -319,7 +329,7 @@ radiance. window: none, hanning or lanczos (damps ringing). details=True returns
         py::arg("units") = "game", py::arg("layout") = "faces", py::arg("input_size") = py::none(),
         R"(bake_irradiance(image, *, size=32, units='game', layout='faces', input_size=None) -> ndarray
 
-The cosine-convolved irradiance cube map of an environment (the image argument as bake_sh), by brute force:
+The cosine-convolved irradiance cube map of an environment (the image argument as bake_sh), exact over its texels:
 units='game' stores E/pi (a constant 0.5 environment bakes to 0.5), 'radiometric' stores E. layout='faces'
 returns float32 (6, size, size, 3) in the order +X, -X, +Y, -Y, +Z, -Z (OpenGL orientation); 'hcross',
 'vcross' or 'latlong' return the (H, W, 3) image `shadelab bake irradiance --layout` writes.)");

@@ -74,14 +74,21 @@ void check_size(const std::string& option, int size, int max) {
 }
 
 
-// Reads INPUT as a lat-long (2:1) or a cross (4:3 or 3:4) and returns a cube map.
-CubeMap load_environment(const BakeOptions& o) {
+// Reads INPUT (warning about repaired NaN/Inf values).
+Image read_environment_image(const BakeOptions& o) {
   ReadInfo info;
   Image img = unwrap(read_image(o.input, &info));
   if (info.nonfinite_repaired > 0) {
     warn(o.input + ": " + std::to_string(info.nonfinite_repaired) + " NaN/Inf values replaced by 0");
   }
-  if (img.width == 2 * img.height) {
+  return img;
+}
+
+bool is_latlong(const Image& img) { return img.width == 2 * img.height; }
+
+// Reads INPUT as a lat-long (2:1) or a cross (4:3 or 3:4) and returns a cube map.
+CubeMap environment_to_cube(const BakeOptions& o, Image img) {
+  if (is_latlong(img)) {
     int size = o.input_size;
     if (o.has("--input-size")) check_size("--input-size", size, 2048);
     if (!o.has("--input-size")) {  // about the lat-long's resolution: a face spans a quarter of its width
@@ -94,6 +101,8 @@ CubeMap load_environment(const BakeOptions& o) {
   if (!cube) throw UsageError(o.input + ": " + cube.error().message + "; expected a 2:1 lat-long or a cube cross");
   return std::move(cube).value();
 }
+
+CubeMap load_environment(const BakeOptions& o) { return environment_to_cube(o, read_environment_image(o)); }
 
 RadianceUnits parse_units(const std::string& u) {
   if (u == "game") return RadianceUnits::game;
@@ -163,11 +172,15 @@ void run_irradiance(const BakeOptions& o) {
   check_layout(o, out);
   check_bake_outputs(o, {{"--out", out}});
   work_begins();
-  const CubeMap env = load_environment(o);
+  // A lat-long input is convolved over its own texels (exact for the map as given: no resampling to a cube,
+  // whose texels would move a bright low sun across the horizon of the normals below it), unless
+  // --input-size asks for a cube of that size first.
+  Image img = read_environment_image(o);
   ProgressBar bar("irradiance", o.progress);
   ConvolveOptions opts;
   opts.progress = [&](double f) { bar.update(f); };
-  const CubeMap e = irradiance_cube(env, size, units, opts);
+  const CubeMap e = is_latlong(img) && !o.has("--input-size") ? irradiance_cube(img, size, units, opts)
+                                                              : irradiance_cube(environment_to_cube(o, std::move(img)), size, units, opts);
   bar.finish();
   const std::uint64_t clamped = write_cube(e, out, o.layout);
   if (o.json) {
@@ -232,8 +245,10 @@ void run_sh(const BakeOptions& o) {
     check_bake_outputs(o, {{"--out", o.out}});
   }
   work_begins();
-  const CubeMap env = load_environment(o);
-  Sh9 sh = project_sh9(env);
+  // A lat-long input is projected texel by texel (each with its exact solid angle), without resampling to a
+  // cube first, unless --input-size asks for that cube: the command then costs about one read of the file.
+  Image img = read_environment_image(o);
+  Sh9 sh = is_latlong(img) && !o.has("--input-size") ? project_sh9(img) : project_sh9(environment_to_cube(o, std::move(img)));
   // D3DX-style punctual lights (sh.h): each adds the projection of pi c delta(w - d), scaled by 16/17 with
   // d3dx normalization so that the game irradiance facing a light of colour c is exactly c.
   nlohmann::json lights_json = nlohmann::json::array();

@@ -1,7 +1,9 @@
 #include "kernel_library.h"
 
+#include <cstdio>
 #include <stdexcept>
 
+#include "shadelab/kernels/kernels.h"
 #include "sl_lexer.h"
 
 namespace shadelab::shaders {
@@ -161,10 +163,34 @@ Result<KernelLibrary> KernelLibrary::parse(std::vector<KernelFile> files) {
   return lib;
 }
 
+KernelFile ggx_energy_table_file() {
+  // The C++ fetches (kernels.h) read the tables tables.cpp computes by quadrature at first use; a shader reads
+  // the same numbers from constant arrays. 10 decimals: below float's resolution on [0, 1].
+  const auto table = [](const char* name, const char* count, int n, const double* v) {
+    std::string t = "const int " + std::string(count) + " = " + std::to_string(n) + ";\nconst real " + name + "[" +
+                    count + "] = {";
+    for (int i = 0; i < n; ++i) {
+      char b[32];
+      std::snprintf(b, sizeof b, "%.10f", v[i]);
+      t += (i == 0 ? "" : (i % 8 == 0 ? ",\n  " : ", ")) + std::string(b);
+    }
+    return t + "};\n";
+  };
+  std::string text =
+      "// ggx_energy_tables.sl, written by the shader exporter (tools/shaders/kernel_library.cpp): the texel\n"
+      "// fetches of ggx_energy.sl over constant arrays of the numbers the C++ computes (kernels/tables.cpp).\n";
+  text += table("GGX_ENERGY_TEXELS", "GGX_ENERGY_TEXEL_COUNT", 2 * 32 * 32, kernel::ggx_energy_texels());
+  text += table("GGX_ENERGY_AVERAGE_TEXELS", "GGX_ENERGY_AVERAGE_COUNT", 2 * 32, kernel::ggx_energy_average_texels());
+  text += "inline real ggx_energy_texel(int g, int row, int col) {\n  return GGX_ENERGY_TEXELS[(g * 32 + row) * 32 + col];\n}\n";
+  text += "inline real ggx_energy_average_texel(int g, int row) {\n  return GGX_ENERGY_AVERAGE_TEXELS[g * 32 + row];\n}\n";
+  return {"ggx_energy_tables.sl", text};
+}
+
 const KernelLibrary& KernelLibrary::embedded() {
   static const KernelLibrary lib = [] {
     std::vector<KernelFile> files;
     for (const auto& f : embedded_support_files()) files.push_back(f);
+    files.push_back(ggx_energy_table_file());  // before ggx_energy.sl, which fetches from it
     for (const auto& f : embedded_kernel_files()) files.push_back(f);
     auto parsed = parse(std::move(files));
     if (!parsed) throw std::logic_error("embedded kernels: " + parsed.error().message);

@@ -26,6 +26,9 @@ struct KernelFile {
 // and the exporter's own shader-only support kernels (erf.sl: GLSL and HLSL have no erf).
 std::span<const KernelFile> embedded_kernel_files();
 std::span<const KernelFile> embedded_support_files();
+// The GGX energy tables (kernels/tables.h) as a kernel file: constant arrays and the two texel fetches the C++
+// defines in kernels.h (ggx_energy_texel, ggx_energy_average_texel). embedded() puts it after the support files.
+KernelFile ggx_energy_table_file();
 
 enum class FieldType { real, integer, rgb, vec3, boolean };
 

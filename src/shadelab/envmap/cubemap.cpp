@@ -127,4 +127,25 @@ const std::vector<CubeFaceTexel>& cube_face_table(int size) {
   return *entry;
 }
 
+const std::vector<double>& cube_face_solid_angles(int size) {
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<std::vector<double>>> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& entry = cache[size];
+  if (!entry) {
+    const auto n = static_cast<std::size_t>(size);
+    std::vector<double> corner((n + 1) * (n + 1));
+    for (std::size_t j = 0; j <= n; ++j)
+      for (std::size_t i = 0; i <= n; ++i)
+        corner[j * (n + 1) + i] = area_element(2.0 * static_cast<double>(i) / size - 1.0, 2.0 * static_cast<double>(j) / size - 1.0);
+    auto table = std::make_unique<std::vector<double>>(n * n);
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x)
+        (*table)[y * n + x] = corner[(y + 1) * (n + 1) + x + 1] - corner[(y + 1) * (n + 1) + x] - corner[y * (n + 1) + x + 1] +
+                              corner[y * (n + 1) + x];
+    entry = std::move(table);
+  }
+  return *entry;
+}
+
 }  // namespace shadelab

@@ -74,4 +74,8 @@ struct CubeFaceTexel {
 };
 const std::vector<CubeFaceTexel>& cube_face_table(int size);
 
+// Exact solid angles of the N x N texels (x, y) of one face (the same on all six), in double, row-major:
+// from the (N + 1)^2 corner values of F, so (N + 1)^2 atan calls instead of 4 N^2. Cached per size.
+const std::vector<double>& cube_face_solid_angles(int size);
+
 }  // namespace shadelab

@@ -4,16 +4,23 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "shadelab/core/constants.h"
 #include "shadelab/envmap/latlong.h"
+#include "shadelab/envmap/simd.h"
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 
 namespace shadelab {
 
 CubeMap downsample_cube(const CubeMap& cube) {
   if (cube.size % 2 != 0 || cube.size < 2) return cube;
   const int n = cube.size / 2;
+  const std::vector<double>& omega = cube_face_solid_angles(cube.size);
   CubeMap out(n);
   for (int f = 0; f < 6; ++f) {
     for (int y = 0; y < n; ++y) {
@@ -22,7 +29,7 @@ CubeMap downsample_cube(const CubeMap& cube) {
         double w = 0.0;
         for (int j = 0; j < 2; ++j) {
           for (int i = 0; i < 2; ++i) {
-            const double a = cube_texel_solid_angle(2 * x + i, 2 * y + j, cube.size);
+            const double a = omega[static_cast<std::size_t>(2 * y + j) * static_cast<std::size_t>(cube.size) + static_cast<std::size_t>(2 * x + i)];
             sum += cube.texel(f, 2 * x + i, 2 * y + j) * a;
             w += a;
           }
@@ -34,76 +41,19 @@ CubeMap downsample_cube(const CubeMap& cube) {
   return out;
 }
 
-namespace {
-
-// The input as flat arrays: unit directions and L dOmega, in float for a vectorizable inner loop.
-struct Emitters {
-  std::vector<float> x, y, z, r, g, b;
-};
-
-Emitters make_emitters(const CubeMap& cube) {
-  const CubeTexelTable& t = CubeTexelTable::get(cube.size);
-  Emitters e;
-  const std::size_t count = t.direction.size();
-  for (auto* v : {&e.x, &e.y, &e.z, &e.r, &e.g, &e.b}) v->resize(count);
-  const auto n = static_cast<std::size_t>(cube.size);
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::size_t face = k / (n * n);
-    const std::size_t p = 3 * (k % (n * n));
-    const auto& data = cube.faces[face].data;
-    const double w = t.solid_angle[k];
-    e.x[k] = static_cast<float>(t.direction[k].x);
-    e.y[k] = static_cast<float>(t.direction[k].y);
-    e.z[k] = static_cast<float>(t.direction[k].z);
-    e.r[k] = static_cast<float>(static_cast<double>(data[p]) * w);
-    e.g[k] = static_cast<float>(static_cast<double>(data[p + 1]) * w);
-    e.b[k] = static_cast<float>(static_cast<double>(data[p + 2]) * w);
-  }
-  return e;
-}
-
-// E(n) over all emitters: blocks of 1024 summed in float, blocks summed in double.
-Rgb convolve(const Emitters& e, const Vec3& n) {
-  const auto nx = static_cast<float>(n.x);
-  const auto ny = static_cast<float>(n.y);
-  const auto nz = static_cast<float>(n.z);
-  const std::size_t count = e.x.size();
-  double r = 0.0, g = 0.0, b = 0.0;
-  for (std::size_t start = 0; start < count; start += 1024) {
-    const std::size_t end = std::min(count, start + 1024);
-    float sr = 0.0f, sg = 0.0f, sb = 0.0f;
-    for (std::size_t k = start; k < end; ++k) {
-      const float c = std::max(0.0f, nx * e.x[k] + ny * e.y[k] + nz * e.z[k]);
-      sr += c * e.r[k];
-      sg += c * e.g[k];
-      sb += c * e.b[k];
+Image downsample_latlong(const Image& ll) {
+  if (ll.width % 2 != 0 || ll.height % 2 != 0 || ll.width < 2 || ll.height < 2) return ll;
+  Image out(ll.width / 2, ll.height / 2);
+  for (int y = 0; y < out.height; ++y) {
+    const double w0 = latlong_texel_solid_angle(2 * y, ll.width, ll.height);
+    const double w1 = latlong_texel_solid_angle(2 * y + 1, ll.width, ll.height);
+    for (int x = 0; x < out.width; ++x) {
+      const Rgb sum = (ll.at(2 * x, 2 * y) + ll.at(2 * x + 1, 2 * y)) * w0 + (ll.at(2 * x, 2 * y + 1) + ll.at(2 * x + 1, 2 * y + 1)) * w1;
+      out.set(x, y, sum / (2.0 * (w0 + w1)));
     }
-    r += static_cast<double>(sr);
-    g += static_cast<double>(sg);
-    b += static_cast<double>(sb);
   }
-  return {r, g, b};
+  return out;
 }
-
-CubeMap prepared_input(const CubeMap& radiance, int max_size) {
-  CubeMap in = radiance;
-  while (in.size > max_size && in.size % 2 == 0) in = downsample_cube(in);
-  return in;
-}
-
-// Runs body(row) for rows [0, rows) in parallel, in chunks, reporting progress between chunks.
-void for_rows(int rows, const ProgressFn& progress, const std::function<void(int)>& body) {
-  const int chunk = std::max(1, rows / 50);
-  for (int start = 0; start < rows; start += chunk) {
-    const int end = std::min(rows, start + chunk);
-    tbb::parallel_for(tbb::blocked_range<int>(start, end), [&](const tbb::blocked_range<int>& r) {
-      for (int row = r.begin(); row != r.end(); ++row) body(row);
-    });
-    if (progress) progress(static_cast<double>(end) / rows);
-  }
-}
-
-}  // namespace
 
 Rgb irradiance_brute_force(const CubeMap& radiance, const Vec3& n) {
   const CubeTexelTable& t = CubeTexelTable::get(radiance.size);
@@ -119,29 +69,343 @@ Rgb irradiance_brute_force(const CubeMap& radiance, const Vec3& n) {
   return sum;
 }
 
-CubeMap irradiance_cube(const CubeMap& radiance, int size, RadianceUnits units, const ConvolveOptions& options) {
-  const Emitters e = make_emitters(prepared_input(radiance, options.max_input_size));
-  const double scale = units == RadianceUnits::game ? inv_pi : 1.0;  // game: E / pi
-  CubeMap out(size);
-  for_rows(6 * size, options.progress, [&](int row) {
-    const int face = row / size;
-    const int y = row % size;
-    for (int x = 0; x < size; ++x) out.set(face, x, y, convolve(e, texel_direction(face, x, y, size)) * scale);
+Rgb irradiance_brute_force(const Image& latlong, const Vec3& n) {
+  const int w = latlong.width;
+  const int h = latlong.height;
+  Rgb sum;
+  for (int y = 0; y < h; ++y) {
+    const double d_omega = latlong_texel_solid_angle(y, w, h);
+    for (int x = 0; x < w; ++x) {
+      const double c = dot(n, latlong_direction((x + 0.5) / w, (y + 0.5) / h));
+      if (c > 0.0) sum += latlong.at(x, y) * (c * d_omega);
+    }
+  }
+  return sum;
+}
+
+namespace {
+
+using namespace simd;
+
+// Emitters on lines. Entry k of line l is the prefix sum over the line's first k texels of the moment
+// vectors L_c dOmega w, 9 floats (x, y, z for R, then G, then B), summed in double and stored in float.
+struct Lines {
+  bool rings = false;   // lat-long latitude rings (wrapping runs) or cube face rows (prefix / suffix runs)
+  int count = 0;        // lines
+  int length = 0;       // texels per line
+  int face_size = 0;    // cube rows: N (line l is row l % N of face l / N)
+  std::vector<float> param;   // cube rows: tc of the row; rings: cot(theta) of the ring
+  std::vector<float> prefix;  // count * (length + 1) * 9, plus 4 floats of padding for 4-wide loads
+
+  const float* entry(int line, int k) const {
+    return prefix.data() + (static_cast<std::size_t>(line) * static_cast<std::size_t>(length + 1) + static_cast<std::size_t>(k)) * 9;
+  }
+};
+
+void store_prefix(Lines& lines, int line, const std::vector<double>& moments /* length * 9 */) {
+  float* out = lines.prefix.data() + static_cast<std::size_t>(line) * static_cast<std::size_t>(lines.length + 1) * 9;
+  double acc[9] = {};
+  for (int i = 0; i < 9; ++i) out[i] = 0.0f;
+  for (int k = 0; k < lines.length; ++k) {
+    for (int i = 0; i < 9; ++i) {
+      acc[i] += moments[static_cast<std::size_t>(k) * 9 + static_cast<std::size_t>(i)];
+      out[static_cast<std::size_t>(k + 1) * 9 + static_cast<std::size_t>(i)] = static_cast<float>(acc[i]);
+    }
+  }
+}
+
+Lines cube_lines(const CubeMap& cube) {
+  const int n = cube.size;
+  const std::vector<double>& solid_angle = cube_face_solid_angles(n);
+  Lines lines;
+  lines.count = 6 * n;
+  lines.length = n;
+  lines.face_size = n;
+  lines.param.resize(static_cast<std::size_t>(lines.count));
+  lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(n + 1) * 9 + 4, 0.0f);
+  tbb::parallel_for(0, lines.count, [&](int l) {
+    const int f = l / n;
+    const int y = l % n;
+    lines.param[static_cast<std::size_t>(l)] = static_cast<float>((2.0 * y + 1.0) / n - 1.0);
+    std::vector<double> m(static_cast<std::size_t>(n) * 9);
+    for (int x = 0; x < n; ++x) {
+      const Vec3 d = texel_direction(f, x, y, n);
+      const Rgb l_omega = cube.texel(f, x, y) * solid_angle[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)];
+      for (int c = 0; c < 3; ++c) {
+        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
+        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
+        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
+      }
+    }
+    store_prefix(lines, l, m);
   });
+  return lines;
+}
+
+Lines ring_lines(const Image& ll) {
+  const int w = ll.width;
+  const int h = ll.height;
+  Lines lines;
+  lines.rings = true;
+  lines.count = h;
+  lines.length = w;
+  lines.param.resize(static_cast<std::size_t>(h));
+  lines.prefix.assign(static_cast<std::size_t>(h) * static_cast<std::size_t>(w + 1) * 9 + 4, 0.0f);
+  std::vector<double> cos_phi(static_cast<std::size_t>(w)), sin_phi(static_cast<std::size_t>(w));
+  for (int x = 0; x < w; ++x) {
+    const double phi = two_pi * ((x + 0.5) / w - 0.5);  // latlong.h: phi = 2 pi (u - 0.5)
+    cos_phi[static_cast<std::size_t>(x)] = std::cos(phi);
+    sin_phi[static_cast<std::size_t>(x)] = std::sin(phi);
+  }
+  tbb::parallel_for(0, h, [&](int y) {
+    const double theta = pi * (y + 0.5) / h;
+    const double st = std::sin(theta);
+    const double ct = std::cos(theta);
+    lines.param[static_cast<std::size_t>(y)] = static_cast<float>(ct / st);
+    const double d_omega = latlong_texel_solid_angle(y, w, h);
+    std::vector<double> m(static_cast<std::size_t>(w) * 9);
+    for (int x = 0; x < w; ++x) {
+      const Vec3 d{st * cos_phi[static_cast<std::size_t>(x)], ct, st * sin_phi[static_cast<std::size_t>(x)]};
+      const Rgb l_omega = ll.at(x, y) * d_omega;
+      for (int c = 0; c < 3; ++c) {
+        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
+        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
+        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
+      }
+    }
+    store_prefix(lines, y, m);
+  });
+  return lines;
+}
+
+// Per-normal data for a block of normals, structure of arrays padded to a multiple of 8.
+struct NormalBlock {
+  int count = 0;
+  int padded = 0;
+  std::vector<float> n4;              // (nx, ny, nz, 0) per normal
+  std::vector<float> face_local[6][3];  // cube rows: (na, nb, nc) of the normal in each face's (a, b, c) frame
+  std::vector<float> phi, q;          // rings: atan2(nz, nx) and -ny / sqrt(nx^2 + nz^2)
+};
+
+NormalBlock make_block(const Vec3* normals, int count, bool rings) {
+  NormalBlock b;
+  b.count = count;
+  b.padded = (count + 7) / 8 * 8;
+  const auto p = static_cast<std::size_t>(b.padded);
+  b.n4.assign(p * 4, 0.0f);
+  if (rings) {
+    b.phi.assign(p, 0.0f);
+    b.q.assign(p, 0.0f);
+  } else {
+    for (auto& f : b.face_local)
+      for (auto& v : f) v.assign(p, 0.0f);
+  }
+  for (int i = 0; i < count; ++i) {
+    const Vec3 n = normals[i];
+    const auto k = static_cast<std::size_t>(i);
+    b.n4[4 * k] = static_cast<float>(n.x);
+    b.n4[4 * k + 1] = static_cast<float>(n.y);
+    b.n4[4 * k + 2] = static_cast<float>(n.z);
+    if (rings) {
+      const double r = std::sqrt(n.x * n.x + n.z * n.z);
+      b.phi[k] = static_cast<float>(std::atan2(n.z, n.x));
+      b.q[k] = static_cast<float>(std::clamp(-n.y / std::max(r, 1e-30), -1e30, 1e30));
+    } else {
+      // n.d for d = the face's signed permutation of (a, b, c) (cubemap.h, the inverse of table 8.19).
+      const double local[6][3] = {{-n.z, -n.y, n.x}, {n.z, -n.y, -n.x}, {n.x, n.z, n.y},
+                                  {n.x, -n.z, -n.y}, {n.x, -n.y, n.z}, {-n.x, -n.y, -n.z}};
+      for (int f = 0; f < 6; ++f)
+        for (int c = 0; c < 3; ++c)
+          b.face_local[f][c][k] = static_cast<float>(local[f][c]);
+    }
+  }
+  return b;
+}
+
+// Run [lo, hi) of line `line` for 8 normals starting at i; wrap = 1 where the run wraps past the end.
+SHADELAB_INLINE void runs8(const Lines& lines, const NormalBlock& b, int line, int i, int* lo, int* hi, float* wrap) {
+  const float len = static_cast<float>(lines.length);
+  f8 vlo, vhi, vwrap = splat8(0.0f);
+  if (!lines.rings) {
+    // Texel x is in the run iff na sc_x + (nb tc + nc) > 0, sc_x = (2x + 1)/N - 1 (linear in x).
+    const int f = line / lines.face_size;
+    const float tc = lines.param[static_cast<std::size_t>(line)];
+    const f8 na = load8(b.face_local[f][0].data() + i);
+    const f8 rhs = load8(b.face_local[f][1].data() + i) * tc + load8(b.face_local[f][2].data() + i);
+    const i8 tiny = (na < 1e-30f) & (na > -1e-30f);
+    f8 theta = select(tiny, select(rhs > 0.0f, splat8(-4.0f), splat8(4.0f)), -rhs / select(tiny, splat8(1.0f), na));
+    theta = vmin(vmax(theta, splat8(-4.0f)), splat8(4.0f));
+    const f8 q = ((theta + 1.0f) * len - 1.0f) * 0.5f;  // texel x satisfies sc_x = theta at x = q
+    const i8 suffix = tiny | (na > 0.0f);               // na > 0: x > q; na < 0: x < q
+    const f8 first = vmin(vmax(floor8(q) + 1.0f, splat8(0.0f)), splat8(len));
+    const f8 last = vmin(vmax(-floor8(-q), splat8(0.0f)), splat8(len));
+    vlo = select(suffix, first, splat8(0.0f));
+    vhi = select(suffix, splat8(len), last);
+  } else {
+    // Texel x (phi_x = -pi + (x + 1/2) dphi) is in the run iff |phi_x - phi_n| < acos(q cot theta) (mod 2 pi).
+    const float cot = lines.param[static_cast<std::size_t>(line)];
+    const f8 c = load8(b.q.data() + i) * cot;
+    const f8 half = acos8(c);
+    const f8 phi = load8(b.phi.data() + i);
+    const float inv_dphi = len / 6.28318530718f;
+    const f8 j0 = floor8((phi - half + 3.14159265359f) * inv_dphi - 0.5f) + 1.0f;
+    const f8 j1 = floor8((phi + half + 3.14159265359f) * inv_dphi - 0.5f) + 1.0f;
+    f8 count = vmin(vmax(j1 - j0, splat8(0.0f)), splat8(len));
+    count = select(c <= -1.0f, splat8(len), select(c >= 1.0f, splat8(0.0f), count));
+    f8 start = select(j0 < 0.0f, j0 + len, select(j0 >= len, j0 - len, j0));
+    start = select(c <= -1.0f, splat8(0.0f), start);
+    f8 end = start + count;
+    const i8 wraps = end > len;
+    end = select(wraps, end - len, end);
+    vlo = start;
+    vhi = end;
+    vwrap = select(wraps, splat8(1.0f), splat8(0.0f));
+  }
+  const i8 ilo = to_int8(vlo);
+  const i8 ihi = to_int8(vhi);
+  for (int k = 0; k < 8; ++k) {
+    lo[k] = ilo[k];
+    hi[k] = ihi[k];
+    wrap[k] = vwrap[k];
+  }
+}
+
+// E(n) (radiometric) of every normal of the block, written to out[0 .. count).
+SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& b, Rgb* out) {
+  const auto p = static_cast<std::size_t>(b.padded);
+  std::vector<f4> acc(3 * p, f4{});
+  std::vector<int> lo(p), hi(p);
+  std::vector<float> wrap(p);
+  for (int line = 0; line < lines.count; ++line) {
+    for (int i = 0; i < b.padded; i += 8) runs8(lines, b, line, i, lo.data() + i, hi.data() + i, wrap.data() + i);
+    const float* total = lines.entry(line, lines.length);
+    const f4 tr = load4(total), tg = load4(total + 3), tb = load4(total + 6);
+    for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {
+      const float* e0 = lines.entry(line, lo[i]);
+      const float* e1 = lines.entry(line, hi[i]);
+      const f4 n = load4(b.n4.data() + 4 * i);
+      const float wr = wrap[i];
+      // Lane 3 reads the next channel's x; n's lane 3 is 0, so it adds nothing.
+      acc[3 * i] += n * (load4(e1) - load4(e0) + wr * tr);
+      acc[3 * i + 1] += n * (load4(e1 + 3) - load4(e0 + 3) + wr * tg);
+      acc[3 * i + 2] += n * (load4(e1 + 6) - load4(e0 + 6) + wr * tb);
+    }
+  }
+  for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {
+    Rgb e;
+    for (int c = 0; c < 3; ++c) {
+      const f4 a = acc[3 * i + static_cast<std::size_t>(c)];
+      e[c] = static_cast<double>(a[0]) + static_cast<double>(a[1]) + static_cast<double>(a[2]);
+    }
+    out[i] = e;
+  }
+}
+
+SHADELAB_TARGET_AVX2 void convolve_block_avx2(const Lines& lines, const NormalBlock& b, Rgb* out) {
+  convolve_block_impl(lines, b, out);
+}
+void convolve_block_base(const Lines& lines, const NormalBlock& b, Rgb* out) { convolve_block_impl(lines, b, out); }
+
+// E(n) for every normal, in blocks run in parallel; progress between groups of blocks.
+std::vector<Rgb> convolve(const Lines& lines, const std::vector<Vec3>& normals, const ProgressFn& progress) {
+  const int count = static_cast<int>(normals.size());
+  std::vector<Rgb> out(normals.size());
+  // Large blocks: every block streams all lines once, so fewer blocks mean less memory traffic.
+  const int block = std::clamp((count / 8 + 7) / 8 * 8, 512, 4096);
+  const int blocks = (count + block - 1) / block;
+  const int group = std::max(1, blocks / 20);
+  const bool avx = cpu_has_avx2_fma();
+  for (int start = 0; start < blocks; start += group) {
+    const int end = std::min(blocks, start + group);
+    tbb::parallel_for(tbb::blocked_range<int>(start, end, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int k = r.begin(); k != r.end(); ++k) {
+        const int first = k * block;
+        const int n = std::min(block, count - first);
+        const NormalBlock b = make_block(normals.data() + first, n, lines.rings);
+        if (avx) {
+          convolve_block_avx2(lines, b, out.data() + first);
+        } else {
+          convolve_block_base(lines, b, out.data() + first);
+        }
+      }
+    });
+    if (progress) progress(static_cast<double>(end) / blocks);
+  }
   return out;
 }
 
-Image irradiance_latlong(const CubeMap& radiance, int width, RadianceUnits units, const ConvolveOptions& options) {
-  const Emitters e = make_emitters(prepared_input(radiance, options.max_input_size));
-  const double scale = units == RadianceUnits::game ? inv_pi : 1.0;
-  const int height = std::max(1, width / 2);
-  Image out(width, height);
-  for_rows(height, options.progress, [&](int y) {
-    for (int x = 0; x < width; ++x) {
-      out.set(x, y, convolve(e, latlong_direction((x + 0.5) / width, (y + 0.5) / height)) * scale);
-    }
-  });
+std::vector<Vec3> cube_normals(int size) {
+  std::vector<Vec3> n;
+  n.reserve(static_cast<std::size_t>(6 * size * size));
+  for (int f = 0; f < 6; ++f)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) n.push_back(texel_direction(f, x, y, size));
+  return n;
+}
+
+std::vector<Vec3> latlong_normals(int width, int height) {
+  std::vector<Vec3> n;
+  n.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) n.push_back(latlong_direction((x + 0.5) / width, (y + 0.5) / height));
+  return n;
+}
+
+CubeMap to_cube(const std::vector<Rgb>& e, int size, double scale) {
+  CubeMap out(size);
+  std::size_t k = 0;
+  for (int f = 0; f < 6; ++f)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) out.set(f, x, y, e[k++] * scale);
   return out;
+}
+
+Image to_latlong(const std::vector<Rgb>& e, int width, int height, double scale) {
+  Image out(width, height);
+  std::size_t k = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) out.set(x, y, e[k++] * scale);
+  return out;
+}
+
+Lines prepared_lines(const CubeMap& radiance, int max_size) {
+  if (max_size <= 0 || radiance.size <= max_size) return cube_lines(radiance);
+  CubeMap in = radiance;
+  while (in.size > max_size && in.size % 2 == 0) in = downsample_cube(in);
+  return cube_lines(in);
+}
+
+Lines prepared_lines(const Image& latlong, int max_size) {
+  if (max_size <= 0 || latlong.width <= 4 * max_size) return ring_lines(latlong);
+  Image in = latlong;
+  while (in.width > 4 * max_size && in.width % 2 == 0 && in.height % 2 == 0) in = downsample_latlong(in);
+  return ring_lines(in);
+}
+
+double unit_scale(RadianceUnits units) { return units == RadianceUnits::game ? inv_pi : 1.0; }  // game: E / pi
+
+}  // namespace
+
+CubeMap irradiance_cube(const CubeMap& radiance, int size, RadianceUnits units, const ConvolveOptions& options) {
+  const Lines lines = prepared_lines(radiance, options.max_input_size);
+  return to_cube(convolve(lines, cube_normals(size), options.progress), size, unit_scale(units));
+}
+
+CubeMap irradiance_cube(const Image& latlong, int size, RadianceUnits units, const ConvolveOptions& options) {
+  const Lines lines = prepared_lines(latlong, options.max_input_size);
+  return to_cube(convolve(lines, cube_normals(size), options.progress), size, unit_scale(units));
+}
+
+Image irradiance_latlong(const CubeMap& radiance, int width, RadianceUnits units, const ConvolveOptions& options) {
+  const int height = std::max(1, width / 2);
+  const Lines lines = prepared_lines(radiance, options.max_input_size);
+  return to_latlong(convolve(lines, latlong_normals(width, height), options.progress), width, height, unit_scale(units));
+}
+
+Image irradiance_latlong(const Image& latlong, int width, RadianceUnits units, const ConvolveOptions& options) {
+  const int height = std::max(1, width / 2);
+  const Lines lines = prepared_lines(latlong, options.max_input_size);
+  return to_latlong(convolve(lines, latlong_normals(width, height), options.progress), width, height, unit_scale(units));
 }
 
 }  // namespace shadelab

@@ -1,14 +1,26 @@
-// shadelab irradiance maps by brute-force cosine convolution (the PI-or-not article's GetIrradiance):
+// shadelab irradiance maps: the cosine convolution of the PI-or-not article's GetIrradiance,
 //
 //   E(n) = sum over input texels of L(w) max(0, n.w) dOmega(w)          (radiometric, W/m^2)
 //   game convention: E(n) / pi, the exit radiance of a white Lambert surface, so that a constant
 //   environment of 0.5 bakes to 0.5 (the AMD CubeMapGen / HDRShop check).
 //
-// The sum is exact for the input as given. To bound the cost (outputs x inputs), inputs larger than
-// max_input_size per face are first halved with solid-angle weights, which keeps the integral of L over
-// every coarse texel; the cosine kernel is smooth, so the difference is small (tested, docs/envmap.md).
-// Work is split over output rows with TBB; each output texel is computed by one thread in a fixed order,
-// so the result is the same for any thread count.
+// The sum is exact for the input as given (cube texels, or lat-long texels with their exact solid angles),
+// and it is computed without visiting every texel for every normal. The texels lie on lines (cube face rows,
+// lat-long latitude rings) along which the set {w : n.w > 0} is one contiguous run:
+//   - a cube face row is an arc of a great circle, and n.w changes sign once along it: n_f.(sc, tc, 1) > 0
+//     is a linear condition in sc (a prefix or a suffix of the row);
+//   - a latitude ring at polar angle theta meets the hemisphere n.w > 0 in the arc
+//     |phi - phi_n| < acos(-n_y cot(theta) / sqrt(n_x^2 + n_z^2)).
+// On that run max(0, n.w) = n.w, so the run contributes n . (sum of L dOmega w over the run), a difference
+// of two prefix sums of the moment vectors L dOmega w (per colour channel). Per normal the work is one
+// run per line (6N or H lines) instead of one term per texel (6N^2 or WH), and the result equals the
+// brute-force sum: no truncation, no error bound needed. The only difference from the per-texel sum is
+// in texels within float rounding (1e-6 rad) of the normal's horizon, whose weight n.w is below 1e-6.
+// (Band-limited shortcuts, e.g. a higher-order SH, would need a truncation bound and fail it on maps whose
+// brightest texel holds 7% of all flux next to the horizon, as Blender's night.exr does.)
+//
+// Work is split over blocks of output texels with TBB; each output texel is computed by one thread in a
+// fixed order, so the result is the same for any thread count.
 #pragma once
 
 #include <functional>
@@ -23,19 +35,30 @@ enum class RadianceUnits { game, radiometric };
 using ProgressFn = std::function<void(double fraction_done)>;
 
 struct ConvolveOptions {
-  int max_input_size = 128;  // input faces larger than this are halved (solid-angle weighted) first
-  ProgressFn progress;       // called on the calling thread between chunks of rows
+  // Cube inputs with faces larger than this, and lat-long inputs wider than 4x this, are first halved
+  // (flux-preserving, solid-angle weighted) until they fit, to bound the prefix tables (36 bytes per input
+  // texel: 57 MB at 6 x 512^2 or 2048 x 1024). 0: never halve. Blender's HDRIs (1024 x 512) and their
+  // 6 x 256^2 cubes are used as given.
+  int max_input_size = 512;
+  ProgressFn progress;  // called on the calling thread between blocks of output texels
 };
 
 // Halves the face size; each output texel is the solid-angle-weighted mean of its 2 x 2 input texels.
 // Odd sizes are not halved (returned unchanged).
 CubeMap downsample_cube(const CubeMap& cube);
+// Halves a lat-long map (W x H -> W/2 x H/2) keeping the flux of every 2 x 2 block (row solid angles as
+// weights). Odd sizes are returned unchanged.
+Image downsample_latlong(const Image& latlong);
 
-// E(n) at one direction over every texel of the cube (radiometric). For tests and spot checks.
+// E(n) at one direction by the per-texel sum (radiometric). For tests and spot checks.
 Rgb irradiance_brute_force(const CubeMap& radiance, const Vec3& n);
+Rgb irradiance_brute_force(const Image& latlong, const Vec3& n);
 
+// Irradiance cube (face size `size`) or lat-long (width x width/2) of a cube-map or a lat-long input.
 CubeMap irradiance_cube(const CubeMap& radiance, int size, RadianceUnits units, const ConvolveOptions& options = {});
+CubeMap irradiance_cube(const Image& latlong, int size, RadianceUnits units, const ConvolveOptions& options = {});
 Image irradiance_latlong(const CubeMap& radiance, int width, RadianceUnits units,
                          const ConvolveOptions& options = {});
+Image irradiance_latlong(const Image& latlong, int width, RadianceUnits units, const ConvolveOptions& options = {});
 
 }  // namespace shadelab

@@ -23,8 +23,13 @@ double latlong_texel_solid_angle(int y, int width, int height);
 // Bilinear lookup with horizontal wrap-around and clamping at the poles.
 Rgb sample_latlong(const Image& map, const Vec3& dir);
 
-// Resampling with area filtering: each output texel averages ss x ss bilinear lookups spread over it.
-CubeMap latlong_to_cube(const Image& latlong, int size, int supersample = 4);
+// Lat-long -> cube. supersample = 0 (the default): exact area-weighted resampling, each cube texel the mean
+// of the piecewise-constant lat-long map over the texel (every lat-long texel's flux goes to the cube
+// texels it overlaps, in proportion to the overlap; a constant comes back exactly; latlong.cpp has the
+// Green's-theorem construction). supersample = s > 0: the mean of s x s bilinear point samples per texel
+// (the former method, which spreads a bright texel up to one texel beyond its edges).
+CubeMap latlong_to_cube(const Image& latlong, int size, int supersample = 0);
+// Cube -> lat-long: each output texel averages ss x ss bilinear lookups spread over it.
 Image cube_to_latlong(const CubeMap& cube, int width, int supersample = 4);
 
 // Cube maps stored as a cross in one image. Horizontal cross (4 x 3 faces):

@@ -8,6 +8,11 @@
 #include <string>
 
 #include "shadelab/core/constants.h"
+#include "shadelab/envmap/simd.h"
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 
 namespace shadelab {
 
@@ -35,70 +40,201 @@ Rgb prefilter_brute_force(const CubeMap& radiance, const Vec3& r, double n) {
 
 namespace {
 
-// An input level prepared for culling: tiles of T x T texels with a bounding cone each.
-struct Tile {
-  Vec3 axis;
-  double radius = 0.0;        // every texel centre of the tile is within this angle (radians) of the axis
-  double cos_reach = -1.0;    // cos(radius + cutoff angle) for the level being filtered, -1 past pi
-  int face = 0, x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-};
+using namespace simd;
 
-struct Level {
-  const CubeMap* cube = nullptr;
-  std::vector<Tile> tiles;
-};
+// Lobes: the weight K(t) up to a constant factor as a function of d = 1 - t (8 lanes), and the cosine
+// below which K < 1e-9 K(1).
+struct PhongLobe {
+  float n_log2e = 0.0f;  // n / ln 2: t^n = 2^(n log2(e) ln t)
+  int terms = 10;        // terms of the series of ln(1 - d) (narrow caps), 0: range-reduced log (wide caps)
+  double cos_cutoff = 0.0;
 
-Level prepare_level(const CubeMap& cube) {
-  Level lv;
-  lv.cube = &cube;
-  const int n = cube.size;
-  const int tile = std::min(16, n);
-  for (int f = 0; f < 6; ++f) {
-    for (int ty = 0; ty < n; ty += tile) {
-      for (int tx = 0; tx < n; tx += tile) {
-        Tile t;
-        t.face = f;
-        t.x0 = tx;
-        t.y0 = ty;
-        t.x1 = std::min(n, tx + tile);
-        t.y1 = std::min(n, ty + tile);
-        t.axis = cube_direction(f, 0.5 * (t.x0 + t.x1) / n, 0.5 * (t.y0 + t.y1) / n);
-        double c = 1.0;
-        for (int y = t.y0; y < t.y1; ++y)
-          for (int x = t.x0; x < t.x1; ++x) c = std::min(c, dot(t.axis, texel_direction(f, x, y, n)));
-        t.radius = std::acos(std::clamp(c, -1.0, 1.0));
-        lv.tiles.push_back(t);
-      }
+  // ln t = ln(1 - d). Narrow caps (d <= 1/4) use the series -(d + d^2/2 + ... + d^K/K), no division, with the
+  // fewest terms K (4 .. 10) whose remainder, below d^(K+1)/(K+1) / (1 - d), changes n ln t by less than 1e-6
+  // at the cap's edge (a relative weight error of 1e-6 where the weight is 1e-9 of its peak, less nearer R).
+  explicit PhongLobe(double n) : n_log2e(static_cast<float>(n / 0.69314718055994531)), cos_cutoff(std::pow(1e-9, 1.0 / n)) {
+    const double d_max = 1.0 - cos_cutoff;
+    if (d_max > 0.25) {
+      terms = 0;
+    } else {
+      terms = 4;
+      while (terms < 10 && n * std::pow(d_max, terms + 1) / ((terms + 1) * (1.0 - d_max)) > 1e-6) ++terms;
     }
   }
-  return lv;
+
+  template <int K>
+  SHADELAB_INLINE static f8 log1m_series(const f8& d) {
+    f8 p = splat8(1.0f / K);
+    for (int k = K - 1; k >= 1; --k) p = p * d + 1.0f / static_cast<float>(k);
+    return -(p * d);
+  }
+  template <int K>
+  SHADELAB_INLINE f8 weight(const f8& d) const {
+    if constexpr (K == 0) {
+      return exp2_8(n_log2e * log1m_8(d));
+    } else {
+      return exp2_8(n_log2e * log1m_series<K>(d));
+    }
+  }
+};
+
+// One input level in planar float form, and the per-(x, y) tables shared by its six faces: the local
+// direction (a, b, c) = (sc, tc, 1) / |(sc, tc, 1)| and the exact solid angle. Arrays are padded by 8.
+struct Input {
+  const CubeMap* cube = nullptr;
+  int n = 0;
+  std::vector<float> rgb[6][3];
+  std::vector<float> a, b, c, w;
+};
+
+Input make_input(const CubeMap& cube) {
+  Input in;
+  in.cube = &cube;
+  in.n = cube.size;
+  const auto nn = static_cast<std::size_t>(cube.size) * static_cast<std::size_t>(cube.size);
+  for (std::size_t f = 0; f < 6; ++f) {
+    for (auto& plane : in.rgb[f]) plane.assign(nn + 8, 0.0f);
+    const auto& data = cube.faces[f].data;
+    for (std::size_t i = 0; i < nn; ++i)
+      for (std::size_t ch = 0; ch < 3; ++ch) in.rgb[f][ch][i] = data[3 * i + ch];
+  }
+  const std::vector<double>& omega = cube_face_solid_angles(cube.size);
+  for (auto* v : {&in.a, &in.b, &in.c, &in.w}) v->assign(nn + 8, 0.0f);
+  for (int y = 0; y < cube.size; ++y) {
+    for (int x = 0; x < cube.size; ++x) {
+      const double sc = (2.0 * x + 1.0) / cube.size - 1.0;
+      const double tc = (2.0 * y + 1.0) / cube.size - 1.0;
+      const double inv = 1.0 / std::sqrt(1.0 + sc * sc + tc * tc);
+      const auto i = static_cast<std::size_t>(y) * static_cast<std::size_t>(cube.size) + static_cast<std::size_t>(x);
+      in.a[i] = static_cast<float>(sc * inv);
+      in.b[i] = static_cast<float>(tc * inv);
+      in.c[i] = static_cast<float>(inv);
+      in.w[i] = static_cast<float>(omega[i]);
+    }
+  }
+  return in;
 }
 
-Rgb convolve(const Level& lv, const Vec3& r, double n, double cos_cutoff) {
-  const CubeMap& cube = *lv.cube;
-  const auto& table = cube_face_table(cube.size);
-  Rgb sum;
-  double weight = 0.0;
-  for (const Tile& t : lv.tiles) {
-    // Skip the tile if even its nearest possible texel is beyond the cutoff angle from r.
-    // Every texel of the tile is at least angle(r, axis) - radius from r: skip the tile when that exceeds
-    // the cutoff angle, i.e. when r.axis < cos(radius + cutoff) (precomputed per level, no acos here).
-    if (dot(r, t.axis) < t.cos_reach) continue;
-    const Image& img = cube.faces[static_cast<std::size_t>(t.face)];
-    for (int y = t.y0; y < t.y1; ++y) {
-      for (int x = t.x0; x < t.x1; ++x) {
-        const Vec3 d = texel_direction(t.face, x, y, cube.size);
-        const double c = dot(r, d);
-        if (c < cos_cutoff) continue;
-        const double w = std::pow(c, n) *
-                         static_cast<double>(table[static_cast<std::size_t>(y) * static_cast<std::size_t>(cube.size) +
-                                                   static_cast<std::size_t>(x)].w);
-        sum += img.at(x, y) * w;
-        weight += w;
+// Face f's direction is a signed permutation of its local (a, b, c): world_i = sign[f][i] local[perm[f][i]].
+constexpr int face_perm[6][3] = {{2, 1, 0}, {2, 1, 0}, {0, 2, 1}, {0, 2, 1}, {0, 1, 2}, {0, 1, 2}};
+constexpr double face_sign[6][3] = {{1, -1, -1}, {-1, -1, 1}, {1, 1, 1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, -1}};
+
+// The texel index range [lo, hi] whose centres (2k + 1)/N - 1 can lie where the quadratic
+// q2 s^2 + 2 q1 s + q0 <= 0 (s in [-1, 1]); false if none. Conservative: one texel of margin.
+bool index_range(double q2, double q1, double q0, int n, int& lo, int& hi) {
+  double s0 = -1.0, s1 = 1.0;
+  if (q2 > 1e-12) {
+    const double disc = q1 * q1 - q2 * q0;
+    if (disc < 0.0) return false;
+    const double root = std::sqrt(disc);
+    s0 = std::max(-1.0, (-q1 - root) / q2);
+    s1 = std::min(1.0, (-q1 + root) / q2);
+    if (s0 > s1) return false;
+  }
+  lo = std::max(0, static_cast<int>(std::floor(((s0 + 1.0) * n - 1.0) * 0.5)) - 1);
+  hi = std::min(n - 1, static_cast<int>(std::ceil(((s1 + 1.0) * n - 1.0) * 0.5)) + 1);
+  return lo <= hi;
+}
+
+// The x range of row tc inside the cap r.p >= kappa |p|, p = (sc, tc, 1) (face-local): squaring,
+// (ra^2 - kappa^2) sc^2 + 2 ra beta sc + beta^2 - kappa^2 (1 + tc^2) >= 0 with beta = rb tc + rc. When
+// ra^2 < kappa^2 that is one interval (the cap's side is where ra sc + beta > 0); otherwise the row can meet
+// the cap in a ray, and the face-wide column range is kept. Narrows [lo, hi]; false if the row misses.
+bool row_range(double ra, double rb, double rc, double kappa, double tc, int n, int& lo, int& hi) {
+  const double beta = rb * tc + rc;
+  const double a2 = ra * ra - kappa * kappa;
+  if (a2 >= -1e-9) return true;
+  const double b1 = ra * beta;
+  const double c0 = beta * beta - kappa * kappa * (1.0 + tc * tc);
+  const double disc = b1 * b1 - a2 * c0;
+  if (disc < 0.0) return false;
+  const double root = std::sqrt(disc);
+  const double s0 = (-b1 + root) / a2, s1 = (-b1 - root) / a2;  // a2 < 0: s0 <= s1
+  if (ra * 0.5 * (s0 + s1) + beta <= 0.0) return false;          // the antipodal nappe
+  lo = std::max(lo, static_cast<int>(std::floor(((s0 + 1.0) * n - 1.0) * 0.5)) - 1);
+  hi = std::min(hi, static_cast<int>(std::ceil(((s1 + 1.0) * n - 1.0) * 0.5)) + 1);
+  return lo <= hi;
+}
+
+template <int K, class Lobe>
+SHADELAB_INLINE Rgb convolve_one(const Input& in, const Lobe& lobe, const Vec3& r, double kappa, double sin2_cap,
+                                 double cap_angle, float d_max) {
+  const int n = in.n;
+  f8 acc_w = {}, acc_r = {}, acc_g = {}, acc_b = {};
+  for (int f = 0; f < 6; ++f) {
+    double local[3];
+    for (int i = 0; i < 3; ++i) local[face_perm[f][i]] = face_sign[f][i] * r[i];
+    const double ra = local[0], rb = local[1], rc = local[2];
+    // Every point of a face is within acos(1/sqrt(3)) of its axis.
+    if (std::acos(std::clamp(rc, -1.0, 1.0)) > cap_angle + 0.9553166181245093) continue;
+    // Rows (columns) whose great circle, through the face's s (t) axis, passes within the cap's angle of r:
+    // the distance from r to the circle of row tc is asin(|rc tc - rb| / sqrt(1 + tc^2)).
+    int y0 = 0, y1 = 0, x0 = 0, x1 = 0;
+    if (!index_range(rc * rc - sin2_cap, -rb * rc, rb * rb - sin2_cap, n, y0, y1)) continue;
+    if (!index_range(rc * rc - sin2_cap, -ra * rc, ra * ra - sin2_cap, n, x0, x1)) continue;
+    const f8 va = splat8(static_cast<float>(ra)), vb = splat8(static_cast<float>(rb)), vc = splat8(static_cast<float>(rc));
+    const float* pr = in.rgb[static_cast<std::size_t>(f)][0].data();
+    const float* pg = in.rgb[static_cast<std::size_t>(f)][1].data();
+    const float* pb = in.rgb[static_cast<std::size_t>(f)][2].data();
+    for (int y = y0; y <= y1; ++y) {
+      int lo = x0, hi = x1;
+      if (!row_range(ra, rb, rc, kappa, (2.0 * y + 1.0) / n - 1.0, n, lo, hi)) continue;
+      const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(n);
+      const f8 last = splat8(static_cast<float>(hi));
+      for (int x = lo; x <= hi; x += 8) {
+        const std::size_t i = row + static_cast<std::size_t>(x);
+        const f8 da = va - load8(in.a.data() + i), db = vb - load8(in.b.data() + i), dc = vc - load8(in.c.data() + i);
+        const f8 d = 0.5f * (da * da + db * db + dc * dc);  // 1 - r.w, without the cancellation of 1 - t
+        const i8 keep = (d <= d_max) & ((iota8() + static_cast<float>(x)) <= last);
+        const f8 wt = select(keep, lobe.template weight<K>(d) * load8(in.w.data() + i), splat8(0.0f));
+        acc_w += wt;
+        acc_r += wt * load8(pr + i);
+        acc_g += wt * load8(pg + i);
+        acc_b += wt * load8(pb + i);
       }
     }
   }
-  return weight > 0.0 ? sum / weight : Rgb{};
+  const double sw = hsum(acc_w);
+  if (!(sw > 0.0)) return in.cube->sample(r);  // a lobe narrower than the texels: the texel it points at
+  return Rgb{hsum(acc_r), hsum(acc_g), hsum(acc_b)} / sw;
+}
+
+struct LevelJob {
+  const Input* in = nullptr;
+  CubeMap* out = nullptr;
+  double kappa = 0.0, sin2_cap = 1.0, cap_angle = pi / 2;
+  float d_max = 1.0f;
+};
+
+template <int K, class Lobe>
+SHADELAB_INLINE void convolve_rows_k(const LevelJob& job, const Lobe& lobe, int begin, int end) {
+  const int size = job.out->size;
+  for (int row = begin; row < end; ++row) {
+    const int face = row / size;
+    const int y = row % size;
+    for (int x = 0; x < size; ++x) {
+      job.out->set(face, x, y, convolve_one<K>(*job.in, lobe, texel_direction(face, x, y, size), job.kappa, job.sin2_cap, job.cap_angle, job.d_max));
+    }
+  }
+}
+
+SHADELAB_INLINE void convolve_rows_phong(const LevelJob& job, const PhongLobe& lobe, int begin, int end) {
+  switch (lobe.terms) {
+    case 0: convolve_rows_k<0>(job, lobe, begin, end); break;
+    case 4: convolve_rows_k<4>(job, lobe, begin, end); break;
+    case 5: convolve_rows_k<5>(job, lobe, begin, end); break;
+    case 6: convolve_rows_k<6>(job, lobe, begin, end); break;
+    case 7: convolve_rows_k<7>(job, lobe, begin, end); break;
+    case 8: convolve_rows_k<8>(job, lobe, begin, end); break;
+    case 9: convolve_rows_k<9>(job, lobe, begin, end); break;
+    default: convolve_rows_k<10>(job, lobe, begin, end); break;
+  }
+}
+SHADELAB_TARGET_AVX2 void convolve_rows_phong_avx2(const LevelJob& job, const PhongLobe& lobe, int begin, int end) {
+  convolve_rows_phong(job, lobe, begin, end);
+}
+void convolve_rows_phong_base(const LevelJob& job, const PhongLobe& lobe, int begin, int end) {
+  convolve_rows_phong(job, lobe, begin, end);
 }
 
 }  // namespace
@@ -119,10 +255,12 @@ Result<PrefilteredCube> prefilter_specular(const CubeMap& radiance, const Prefil
   }
   if (radiance.size < 1) return make_error("prefilter: the input cube map is empty");
 
-  // The input pyramid, finest first.
-  std::vector<CubeMap> pyramid{radiance};
-  while (pyramid.back().size % 2 == 0 && pyramid.back().size > 1) pyramid.push_back(downsample_cube(pyramid.back()));
-  std::vector<Level> prepared(pyramid.size());
+  // The input pyramid, finest first: sizes now, levels halved on demand.
+  std::vector<int> sizes{radiance.size};
+  while (sizes.back() % 2 == 0 && sizes.back() > 1) sizes.push_back(sizes.back() / 2);
+  std::vector<CubeMap> pyramid(sizes.size());
+  std::vector<Input> prepared(sizes.size());
+  const bool avx = cpu_has_avx2_fma();
 
   PrefilteredCube out;
   long long total_rows = 0;
@@ -131,26 +269,44 @@ Result<PrefilteredCube> prefilter_specular(const CubeMap& radiance, const Prefil
   for (int i = 0; i < levels; ++i) {
     const int size = std::max(1, o.size >> i);
     const double n = prefilter_exponent(i, levels, o.gloss_scale, o.gloss_bias);
-    // Coarsest input whose texel angle (about (pi/2)/N) is at most half the lobe width 1/sqrt(n).
-    std::size_t pick = 0;
-    for (std::size_t k = 0; k < pyramid.size(); ++k) {
-      if ((pi / 2.0) / pyramid[k].size <= 0.5 / std::sqrt(n)) pick = k;
+    const PhongLobe lobe(n);
+    const double kappa = std::max(0.0, lobe.cos_cutoff);  // caps wider than a hemisphere are cut at t = 0
+    // The finest input level within 2e9 weight evaluations (outputs x texels in the cap, a (1 - kappa)/2
+    // fraction of the sphere), but never one whose texels (about (pi/2)/N) exceed half the lobe width.
+    const double outputs = 6.0 * size * size;
+    std::size_t pick = sizes.size() - 1;
+    for (std::size_t k = 0; k < sizes.size(); ++k) {
+      const double texels = 6.0 * sizes[k] * sizes[k] * (1.0 - kappa) / 2.0;
+      if (outputs * texels <= 2e9) {
+        pick = k;
+        break;
+      }
     }
-    if (prepared[pick].cube == nullptr) prepared[pick] = prepare_level(pyramid[pick]);
-    Level& lv = prepared[pick];
-    const double cos_cutoff = std::pow(1e-9, 1.0 / n);  // lobe below 1e-9 of its peak beyond this
-    const double cutoff = std::acos(cos_cutoff);
-    for (Tile& t : lv.tiles) t.cos_reach = t.radius + cutoff >= pi ? -2.0 : std::cos(t.radius + cutoff);
+    while (pick > 0 && (pi / 2.0) / sizes[pick] > 0.5 / std::sqrt(n)) --pick;
+    if (prepared[pick].cube == nullptr) {
+      for (std::size_t k = 1; k <= pick; ++k) {
+        if (pyramid[k].size == 0) pyramid[k] = downsample_cube(k == 1 ? radiance : pyramid[k - 1]);
+      }
+      prepared[pick] = make_input(pick == 0 ? radiance : pyramid[pick]);
+    }
+
     CubeMap level(size);
+    LevelJob job;
+    job.in = &prepared[pick];
+    job.out = &level;
+    job.kappa = kappa;
+    job.cap_angle = std::acos(kappa);
+    job.sin2_cap = 1.0 - kappa * kappa;
+    job.d_max = static_cast<float>(1.0 - kappa);
     const int rows = 6 * size;
     const int chunk = std::max(1, rows / 20);
     for (int start = 0; start < rows; start += chunk) {
       const int end = std::min(rows, start + chunk);
       tbb::parallel_for(tbb::blocked_range<int>(start, end), [&](const tbb::blocked_range<int>& range) {
-        for (int row = range.begin(); row != range.end(); ++row) {
-          const int face = row / size;
-          const int y = row % size;
-          for (int x = 0; x < size; ++x) level.set(face, x, y, convolve(lv, texel_direction(face, x, y, size), n, cos_cutoff));
+        if (avx) {
+          convolve_rows_phong_avx2(job, lobe, range.begin(), range.end());
+        } else {
+          convolve_rows_phong_base(job, lobe, range.begin(), range.end());
         }
       });
       rows_done += end - start;

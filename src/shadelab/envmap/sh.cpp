@@ -3,11 +3,20 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "shadelab/envmap/latlong.h"
+#include "shadelab/envmap/simd.h"
 #include "shadelab/kernels/kernels.h"
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 
 namespace shadelab {
 
@@ -38,98 +47,262 @@ BandFactors sh_window_factors(ShWindow window) {
 
 namespace {
 
-// Sums of one face row, in float (at most a few thousand terms), returned as 27 numbers: 9 bases x RGB.
-using RowSums = std::array<double, 27>;
+using namespace simd;
 
-template <int Face>
-void project_row(const float* rgb, const CubeFaceTexel* t, int n, RowSums& out) {
-  std::array<float, 27> acc{};
-  for (int x = 0; x < n; ++x) {
-    const float a = t[x].a, b = t[x].b, c = t[x].c, w = t[x].w;
-    float dx, dy, dz;  // the face's direction: the inverse of table 8.19
-    if constexpr (Face == 0) { dx = c; dy = -b; dz = -a; }
-    else if constexpr (Face == 1) { dx = -c; dy = -b; dz = a; }
-    else if constexpr (Face == 2) { dx = a; dy = c; dz = b; }
-    else if constexpr (Face == 3) { dx = a; dy = -c; dz = -b; }
-    else if constexpr (Face == 4) { dx = a; dy = -b; dz = c; }
-    else { dx = -a; dy = -b; dz = -c; }
-    const float basis[9] = {static_cast<float>(sh_c0) * w,
-                            static_cast<float>(-sh_c1) * dy * w,
-                            static_cast<float>(sh_c1) * dz * w,
-                            static_cast<float>(-sh_c1) * dx * w,
-                            static_cast<float>(sh_c2) * dx * dy * w,
-                            static_cast<float>(-sh_c2) * dy * dz * w,
-                            static_cast<float>(sh_c3) * (3.0f * dz * dz - 1.0f) * w,
-                            static_cast<float>(-sh_c2) * dx * dz * w,
-                            static_cast<float>(sh_c4) * (dx * dx - dy * dy) * w};
-    const float r = rgb[3 * x], g = rgb[3 * x + 1], bl = rgb[3 * x + 2];
-    for (int i = 0; i < 9; ++i) {
-      acc[static_cast<std::size_t>(3 * i)] += basis[i] * r;
-      acc[static_cast<std::size_t>(3 * i + 1)] += basis[i] * g;
-      acc[static_cast<std::size_t>(3 * i + 2)] += basis[i] * bl;
+// The projection kernel: for one row of texels (RGB interleaved) and five weight arrays g_k, the 15 sums
+// sum_x L_c(x) g_k(x), in float with 8 independent lanes (the row is at most a few thousand texels). The
+// SH9 projection of a cube row and of a lat-long ring both reduce to five such weights (see below). Each
+// g3[k] holds its weights expanded to the row's interleaved layout (g(0) three times, g(1) three times, ...),
+// so the row is read as it lies, 24 floats (8 texels) a step, each float multiplied by its lane-aligned
+// weight with no de-interleaving; the channel of float j of the row is j mod 3. Two passes (k = 0..2, then
+// 3..4) keep the accumulators in registers (9 and 6 of the 16); the row (12 n bytes) stays in L1 between.
+template <int K0, int K1>
+SHADELAB_INLINE void row_pass(const float* rgb, const float* const g3[5], int n, float out[15]) {
+  constexpr int K = K1 - K0;
+  f8 acc[K][3] = {};
+  int x = 0;
+  for (; x + 8 <= n; x += 8) {
+    const float* p = rgb + 3 * x;
+    const f8 v0 = load8(p), v1 = load8(p + 8), v2 = load8(p + 16);
+    for (int k = 0; k < K; ++k) {
+      const float* w = g3[K0 + k] + 3 * x;
+      acc[k][0] += load8(w) * v0;
+      acc[k][1] += load8(w + 8) * v1;
+      acc[k][2] += load8(w + 16) * v2;
     }
   }
-  for (std::size_t i = 0; i < 27; ++i) out[i] = static_cast<double>(acc[i]);
+  for (int k = 0; k < K; ++k) {
+    float lanes[24];
+    store8(lanes, acc[k][0]);
+    store8(lanes + 8, acc[k][1]);
+    store8(lanes + 16, acc[k][2]);
+    for (int j = 0; j < 24; ++j) out[3 * (K0 + k) + j % 3] += lanes[j];
+  }
+  for (; x < n; ++x)
+    for (int k = K0; k < K1; ++k)
+      for (int c = 0; c < 3; ++c) out[3 * k + c] += g3[k][3 * x + c] * rgb[3 * x + c];
 }
 
-Sh9 from_sums(const RowSums& s) {
+SHADELAB_INLINE void row_sums5_impl(const float* rgb, const float* const g3[5], int n, float out[15]) {
+  for (int i = 0; i < 15; ++i) out[i] = 0.0f;
+  row_pass<0, 3>(rgb, g3, n, out);
+  row_pass<3, 5>(rgb, g3, n, out);
+}
+
+SHADELAB_TARGET_AVX2 void row_sums5_avx2(const float* rgb, const float* const g[5], int n, float out[15]) {
+  row_sums5_impl(rgb, g, n, out);
+}
+void row_sums5_base(const float* rgb, const float* const g[5], int n, float out[15]) { row_sums5_impl(rgb, g, n, out); }
+
+using RowSums5 = std::array<double, 15>;
+
+// The nine SH9 coefficients from the ten second-order moments sum L w d_i d_j, sum L w d_i, sum L w
+// (per channel): index 0 = 1; 1, 2, 3 = x, y, z; 4 xy, 5 yz, 6 xz, 7 xx, 8 yy, 9 zz.
+using Moments = std::array<Rgb, 10>;
+
+// Each Y_i of kernels/sh9.sl is a quadratic polynomial in (x, y, z); P[i][k] is its coefficient of moment k,
+// read off the kernel itself (the one source of the basis) by finite differences that are exact for a
+// quadratic: constant Y(0); x: (Y(e) - Y(-e))/2; xx: (Y(e) + Y(-e))/2 - Y(0); xy: Y(e1 + e2) - Y(e1) - Y(e2) + Y(0).
+using BasisPolynomial = std::array<std::array<double, 10>, 9>;
+const BasisPolynomial& basis_polynomial() {
+  static const BasisPolynomial p = [] {
+    auto y = [](double a, double b, double c) { return kernel::sh9_basis(kernel::vec3(a, b, c)); };
+    const Vec3 e[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const int cross[3][2] = {{0, 1}, {1, 2}, {0, 2}};  // moments 4 xy, 5 yz, 6 xz
+    BasisPolynomial out{};
+    const kernel::Sh9Basis y0 = y(0, 0, 0);
+    for (std::size_t i = 0; i < 9; ++i) out[i][0] = y0.y[i];
+    for (std::size_t a = 0; a < 3; ++a) {
+      const kernel::Sh9Basis yp = y(e[a].x, e[a].y, e[a].z), ym = y(-e[a].x, -e[a].y, -e[a].z);
+      for (std::size_t i = 0; i < 9; ++i) {
+        out[i][1 + a] = 0.5 * (yp.y[i] - ym.y[i]);
+        out[i][7 + a] = 0.5 * (yp.y[i] + ym.y[i]) - y0.y[i];
+      }
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3 u = e[cross[k][0]], v = e[cross[k][1]], s = u + v;
+      const kernel::Sh9Basis ys = y(s.x, s.y, s.z), yu = y(u.x, u.y, u.z), yv = y(v.x, v.y, v.z);
+      for (std::size_t i = 0; i < 9; ++i) out[i][4 + k] = ys.y[i] - yu.y[i] - yv.y[i] + y0.y[i];
+    }
+    return out;
+  }();
+  return p;
+}
+
+Sh9 from_moments(const Moments& m) {
+  const BasisPolynomial& p = basis_polynomial();
   Sh9 sh;
-  for (std::size_t i = 0; i < 9; ++i) sh.c[i] = {s[3 * i], s[3 * i + 1], s[3 * i + 2]};
+  for (std::size_t i = 0; i < 9; ++i)
+    for (std::size_t k = 0; k < 10; ++k)
+      if (p[i][k] != 0.0) sh.c[i] += m[k] * p[i][k];
   return sh;
+}
+
+// Face f's direction is a signed permutation of its local (a, b, c) = (sc, tc, 1) / |(sc, tc, 1)|
+// (cubemap.h): world component i = sign[f][i] * local[perm[f][i]].
+constexpr int face_perm[6][3] = {{2, 1, 0}, {2, 1, 0}, {0, 2, 1}, {0, 2, 1}, {0, 1, 2}, {0, 1, 2}};
+constexpr double face_sign[6][3] = {{1, -1, -1}, {-1, -1, 1}, {1, 1, 1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, -1}};
+
+// Per-(x, y) weights of an N x N face, shared by the six faces: the exact solid angle w and the inverse
+// distance c = 1 / sqrt(1 + sc^2 + tc^2), float, row-major. Cached per size.
+struct FaceWeights {
+  std::vector<float> w, c, sc;
+};
+const FaceWeights& face_weights(int size) {
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<FaceWeights>> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& entry = cache[size];
+  if (!entry) {
+    auto t = std::make_unique<FaceWeights>();
+    const auto n = static_cast<std::size_t>(size);
+    const std::vector<double>& omega = cube_face_solid_angles(size);
+    t->w.resize(n * n);
+    t->c.resize(n * n);
+    t->sc.resize(n + 8);
+    for (std::size_t x = 0; x < n; ++x) t->sc[x] = static_cast<float>((2.0 * static_cast<double>(x) + 1.0) / size - 1.0);
+    for (std::size_t y = 0; y < n; ++y) {
+      const double tc = (2.0 * static_cast<double>(y) + 1.0) / size - 1.0;
+      for (std::size_t x = 0; x < n; ++x) {
+        const double sc = (2.0 * static_cast<double>(x) + 1.0) / size - 1.0;
+        t->w[y * n + x] = static_cast<float>(omega[y * n + x]);
+        t->c[y * n + x] = static_cast<float>(1.0 / std::sqrt(1.0 + sc * sc + tc * tc));
+      }
+    }
+    entry = std::move(t);
+  }
+  return *entry;
 }
 
 }  // namespace
 
+// The cube projection. In a face row (tc fixed) the local direction is (a, b, c) = (sc c, tc c, c), so every
+// second-order moment of the row is a row constant times one of five per-texel weights
+//   g0 = w, g1 = w c, g2 = w c^2, g3 = w c sc, g4 = w c^2 sc:
+//   sum w = S0, sum w a = S3, sum w b = tc S1, sum w c = S1, sum w ab = tc S4, sum w ac = S4, sum w bc = tc S2,
+//   sum w b^2 = tc^2 S2, sum w c^2 = S2, sum w a^2 = S0 - (1 + tc^2) S2 (a^2 + b^2 + c^2 = 1),
+// with S_k = sum L g_k. The weights depend on (x, y) only, so they are formed once per row and serve all
+// six faces; each face's world moments are its signed permutation of the local ones.
 Sh9 project_sh9(const CubeMap& cube) {
   const int n = cube.size;
-  const auto& table = cube_face_table(n);
-  // One partial sum per (face, row), summed afterwards in a fixed order: the result does not depend on how
-  // TBB splits the work, so it is the same for any thread count.
-  std::vector<RowSums> rows(static_cast<std::size_t>(6 * n));
-  tbb::parallel_for(tbb::blocked_range<int>(0, 6 * n), [&](const tbb::blocked_range<int>& range) {
-    for (int k = range.begin(); k != range.end(); ++k) {
-      const int face = k / n;
-      const int y = k % n;
-      const float* rgb = cube.faces[static_cast<std::size_t>(face)].data.data() + static_cast<std::size_t>(y) * n * 3;
-      const CubeFaceTexel* t = table.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(n);
-      RowSums& out = rows[static_cast<std::size_t>(k)];
-      switch (face) {
-        case 0: project_row<0>(rgb, t, n, out); break;
-        case 1: project_row<1>(rgb, t, n, out); break;
-        case 2: project_row<2>(rgb, t, n, out); break;
-        case 3: project_row<3>(rgb, t, n, out); break;
-        case 4: project_row<4>(rgb, t, n, out); break;
-        default: project_row<5>(rgb, t, n, out); break;
+  const auto nn = static_cast<std::size_t>(n);
+  const FaceWeights& fw = face_weights(n);
+  const bool avx = cpu_has_avx2_fma();
+  // Local moments per (row, face), summed afterwards in a fixed order: the result does not depend on how
+  // TBB splits the rows, so it is the same for any thread count.
+  std::vector<std::array<Moments, 6>> rows(nn);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& range) {
+    const std::size_t stride = 3 * nn + 24;  // one expanded weight array (row_pass)
+    std::vector<float> g(5 * stride);
+    for (int y = range.begin(); y != range.end(); ++y) {
+      const auto yy = static_cast<std::size_t>(y);
+      const float* w = fw.w.data() + yy * nn;
+      const float* c = fw.c.data() + yy * nn;
+      for (std::size_t x = 0; x < nn; ++x) {
+        const float g1 = w[x] * c[x], g2 = g1 * c[x];
+        const float v[5] = {w[x], g1, g2, g1 * fw.sc[x], g2 * fw.sc[x]};
+        for (std::size_t k = 0; k < 5; ++k)
+          for (std::size_t ch = 0; ch < 3; ++ch) g[k * stride + 3 * x + ch] = v[k];
+      }
+      const float* const gk[5] = {g.data(), g.data() + stride, g.data() + 2 * stride, g.data() + 3 * stride, g.data() + 4 * stride};
+      const double tc = (2.0 * y + 1.0) / n - 1.0;
+      for (int f = 0; f < 6; ++f) {
+        float s[15] = {};
+        const float* rgb = cube.faces[static_cast<std::size_t>(f)].data.data() + yy * nn * 3;
+        if (avx) {
+          row_sums5_avx2(rgb, gk, n, s);
+        } else {
+          row_sums5_base(rgb, gk, n, s);
+        }
+        auto sum = [&](int k) { return Rgb{s[3 * k], s[3 * k + 1], s[3 * k + 2]}; };
+        const Rgb s0 = sum(0), s1 = sum(1), s2 = sum(2), s3 = sum(3), s4 = sum(4);
+        // Local moments: index 0 = 1, 1 a, 2 b, 3 c, then the products of local axes (i, j).
+        const Rgb first[3] = {s3, s1 * tc, s1};
+        const Rgb second[3][3] = {{s0 - s2 * (1.0 + tc * tc), s4 * tc, s4},
+                                  {s4 * tc, s2 * (tc * tc), s2 * tc},
+                                  {s4, s2 * tc, s2}};
+        Moments& m = rows[yy][static_cast<std::size_t>(f)];
+        const int* p = face_perm[f];
+        const double* sg = face_sign[f];
+        m[0] = s0;
+        for (int i = 0; i < 3; ++i) m[static_cast<std::size_t>(1 + i)] = first[p[i]] * sg[i];
+        m[4] = second[p[0]][p[1]] * (sg[0] * sg[1]);
+        m[5] = second[p[1]][p[2]] * (sg[1] * sg[2]);
+        m[6] = second[p[0]][p[2]] * (sg[0] * sg[2]);
+        m[7] = second[p[0]][p[0]];
+        m[8] = second[p[1]][p[1]];
+        m[9] = second[p[2]][p[2]];
       }
     }
   });
-  RowSums total{};
-  for (const auto& r : rows) {
-    for (std::size_t i = 0; i < 27; ++i) total[i] += r[i];
-  }
-  return from_sums(total);
+  Moments total{};
+  for (const auto& r : rows)
+    for (const Moments& m : r)
+      for (std::size_t i = 0; i < 10; ++i) total[i] += m[i];
+  return from_moments(total);
 }
 
+// The lat-long projection, exact for the piecewise-constant map (each texel's integral of Y_i dOmega, not
+// its centre value): in (phi, u = cos theta) dOmega = dphi du and d = (s cos phi, u, s sin phi) with
+// s = sqrt(1 - u^2), so every moment of a texel is a product of a phi integral over its column (of 1, cos phi,
+// sin phi, cos 2 phi, sin 2 phi: cos^2 = (1 + cos 2 phi)/2, sin^2 = (1 - cos 2 phi)/2, cos sin = sin 2 phi / 2)
+// and a u integral over its ring (of 1, u, u^2, s, u s, s^2 = 1 - u^2), all in closed form:
+//   int cos phi = sin b - sin a, int sin phi = cos a - cos b, int cos 2phi = (sin 2b - sin 2a)/2,
+//   int sin 2phi = (cos 2a - cos 2b)/2; int s du = (u s + asin u)/2, int u s du = -(1 - u^2)^(3/2)/3.
+// The column weights g_k are those phi integrals divided by the column width, so g_0 = 1.
 Sh9 project_sh9(const Image& latlong) {
   const int w = latlong.width;
   const int h = latlong.height;
-  std::vector<Sh9> rows(static_cast<std::size_t>(h));
+  const auto ww = static_cast<std::size_t>(w);
+  const double dphi = two_pi / w;
+  const std::size_t stride = 3 * ww + 24;  // one expanded weight array (row_pass)
+  std::vector<float> table(5 * stride, 0.0f);
+  for (std::size_t x = 0; x < ww; ++x) {
+    const double a = two_pi * (static_cast<double>(x) / w - 0.5), b = a + dphi;  // latlong.h: phi = 2 pi (u - 0.5)
+    const double v[5] = {1.0, (std::sin(b) - std::sin(a)) / dphi, (std::cos(a) - std::cos(b)) / dphi,
+                         0.5 * (std::sin(2.0 * b) - std::sin(2.0 * a)) / dphi, 0.5 * (std::cos(2.0 * a) - std::cos(2.0 * b)) / dphi};
+    for (std::size_t k = 0; k < 5; ++k)
+      for (std::size_t ch = 0; ch < 3; ++ch) table[k * stride + 3 * x + ch] = static_cast<float>(v[k]);
+  }
+  const float* const gk[5] = {table.data(), table.data() + stride, table.data() + 2 * stride, table.data() + 3 * stride,
+                              table.data() + 4 * stride};
+  const bool avx = cpu_has_avx2_fma();
+  std::vector<Moments> rows(static_cast<std::size_t>(h));
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& range) {
     for (int y = range.begin(); y != range.end(); ++y) {
-      const double d_omega = latlong_texel_solid_angle(y, w, h);
-      Sh9 acc;
-      for (int x = 0; x < w; ++x) {
-        const Vec3 d = latlong_direction((x + 0.5) / w, (y + 0.5) / h);
-        const ShBasis b = sh9_basis(d);
-        const Rgb l = latlong.at(x, y) * d_omega;
-        for (std::size_t i = 0; i < 9; ++i) acc.c[i] += l * b[i];
+      float s[15] = {};
+      const float* rgb = latlong.data.data() + static_cast<std::size_t>(y) * ww * 3;
+      if (avx) {
+        row_sums5_avx2(rgb, gk, w, s);
+      } else {
+        row_sums5_base(rgb, gk, w, s);
       }
-      rows[static_cast<std::size_t>(y)] = acc;
+      auto sum = [&](int k) { return Rgb{s[3 * k], s[3 * k + 1], s[3 * k + 2]}; };
+      const Rgb one = sum(0), cp = sum(1), sp = sum(2), c2 = sum(3), s2 = sum(4);
+      // The ring's u integrals, from u1 = cos(pi (y + 1)/h) to u0 = cos(pi y/h).
+      const double u0 = y == 0 ? 1.0 : std::cos(pi * y / h), u1 = y + 1 == h ? -1.0 : std::cos(pi * (y + 1) / h);
+      auto int_s = [](double u) { return 0.5 * (u * std::sqrt(std::max(0.0, 1.0 - u * u)) + std::asin(u)); };
+      auto int_us = [](double u) { return -std::pow(std::max(0.0, 1.0 - u * u), 1.5) / 3.0; };
+      const double i1 = u0 - u1, iu = 0.5 * (u0 * u0 - u1 * u1), iuu = (u0 * u0 * u0 - u1 * u1 * u1) / 3.0;
+      const double is = int_s(u0) - int_s(u1), ius = int_us(u0) - int_us(u1), iss = i1 - iuu;
+      Moments& m = rows[static_cast<std::size_t>(y)];
+      m[0] = one * i1;
+      m[1] = cp * is;
+      m[2] = one * iu;
+      m[3] = sp * is;
+      m[4] = cp * ius;
+      m[5] = sp * ius;
+      m[6] = s2 * (0.5 * iss);
+      m[7] = (one + c2) * (0.5 * iss);
+      m[8] = one * iuu;
+      m[9] = (one - c2) * (0.5 * iss);
+      for (Rgb& v : m) v *= dphi;
     }
   });
-  Sh9 total;
-  for (const auto& r : rows) total += r;
-  return total;
+  Moments total{};
+  for (const Moments& m : rows)
+    for (std::size_t i = 0; i < 10; ++i) total[i] += m[i];
+  return from_moments(total);
 }
 
 Sh9 project_sh9(const std::function<Rgb(const Vec3&)>& f, int size) {

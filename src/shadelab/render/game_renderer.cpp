@@ -30,6 +30,12 @@ namespace {
 
 constexpr int kAlbedoBins = 32;
 
+// The prefiltered level's Phong exponent for a GGX-like lobe of perceptual roughness r (alpha = r^2).
+double phong_exponent_from_alpha(double perceptual_roughness) {
+  const double alpha = perceptual_roughness * perceptual_roughness;
+  return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(alpha));
+}
+
 // The Phong exponent whose lobe matches a material's specular lobe, for the prefiltered-map level:
 // Blinn-Phong-like lobes (N.H)^n have n/4; Beckmann roughness m and Ward's alpha convert by n = 2/m^2 - 2.
 double phong_exponent(const std::string& model, const ParamValues& p) {
@@ -47,6 +53,18 @@ double phong_exponent(const std::string& model, const ParamValues& p) {
     return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(a));
   }
   if (model == "lafortune") return p.lobes("lobes").front()[3];
+  // GGX's alpha is a roughness like Beckmann's m (both the RMS slope's scale; Walter et al. 2007 section 5.2).
+  if (model == "ggx") {
+    double ax = p.scalar("alpha");
+    double ay = ax;
+    if (p.is_set("roughness")) ax = ay = p.scalar("roughness") * p.scalar("roughness");
+    if (p.is_set("alpha_x")) {
+      ax = p.scalar("alpha_x");
+      ay = p.scalar("alpha_y");
+    }
+    return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(std::sqrt(ax * ay)));
+  }
+  if (model == "filament") return phong_exponent_from_alpha(p.scalar("perceptual_roughness"));
   return 0.0;  // no specular lobe
 }
 
@@ -106,6 +124,7 @@ class GameShader {
         info.exponent = phong_exponent(m.model, *values);
         info.blinn_like = m.model.find("blinn") != std::string::npos || m.model == "minimalist-cook-torrance" ||
                           m.model == "cook-torrance";
+        if (m.metallic_roughness_texture >= 0) info.roughness_factor = values->scalar("perceptual_roughness");
         BrdfPtr holder;
         const Brdf* f = m_materials.brdf(static_cast<int>(i), {0.5, 0.5}, holder);
         if (const auto* w = dynamic_cast<const WrappedDiffuse*>(f)) info.wrap = w->wrap();
@@ -194,6 +213,11 @@ class GameShader {
           const double n_tex = m.gloss_encoding.exponent_from_gloss(g);
           n_phong = info.blinn_like ? phong_exponent_from_blinn_phong(n_tex) : n_tex;
         }
+        if (m.metallic_roughness_texture >= 0) {  // glTF: roughness = factor x green (materials.cpp)
+          const Vec2 uv{hit.uv.x * m.uv_scale.x, hit.uv.y * m.uv_scale.y};
+          const double g = sample_texture(m_scene.textures[static_cast<std::size_t>(m.metallic_roughness_texture)], uv).g;
+          n_phong = phong_exponent_from_alpha(std::clamp(info.roughness_factor * g, 0.01, 1.0));
+        }
         const Vec3 r = reflect(wo_world, n);
         const double c = std::clamp(wo.z, 0.0, 1.0);
         const double pos = std::clamp(c * kAlbedoBins - 0.5, 0.0, kAlbedoBins - 1.0);
@@ -212,6 +236,7 @@ class GameShader {
     double exponent = 0.0;
     bool blinn_like = false;
     double wrap = 0.0;
+    double roughness_factor = 1.0;  // perceptual roughness that a metallic-roughness texture multiplies
     std::array<Rgb, kAlbedoBins> specular_albedo{};
   };
 

@@ -608,7 +608,7 @@ class Parser {
   }
 
   void parse_material_textures(const Node& node, const ModelInfo& info, Material& m) const {
-    const Object o(node, {"kd", "ks", "gloss", "normal"}, "material textures");
+    const Object o(node, {"kd", "ks", "gloss", "normal", "base_color", "metallic_roughness"}, "material textures");
     auto slot = [&](std::string_view key, bool data, const char* what) -> int {
       const Node n = *o.get(key);
       const int index = texture_ref(n);
@@ -643,6 +643,19 @@ class Parser {
       m.gloss_texture = slot("gloss", true, "a gloss map");
     }
     if (o.has("normal")) m.normal_texture = slot("normal", true, "a normal map");
+    // glTF's metallic-roughness textures (they multiply the parameters: docs/scene-format.md).
+    if (o.has("base_color")) {
+      if (!has_param(info, "base_color"))
+        throw Failure{o.node().child_pointer("base_color"), "brdf " + info.name + " has no parameter 'base_color'"};
+      m.base_color_texture = slot("base_color", false, "a base colour map");
+    }
+    if (o.has("metallic_roughness")) {
+      if (!has_param(info, "metallic") || !has_param(info, "perceptual_roughness")) {
+        throw Failure{o.node().child_pointer("metallic_roughness"),
+                      "brdf " + info.name + " has no parameters 'metallic' and 'perceptual_roughness'"};
+      }
+      m.metallic_roughness_texture = slot("metallic_roughness", true, "a metallic-roughness map");
+    }
   }
 
   int material_ref(const Node& n) const {
