@@ -15,6 +15,7 @@ packages=(
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
   parallel slurm-wlm slurm-client munge
   emscripten
+  clang-14 libclang-rt-14-dev llvm-14
 )
 
 # The independent KTX 2 reader of the container tests (tools/containers): npm's ktx-parse, pinned by its

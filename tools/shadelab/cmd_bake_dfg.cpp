@@ -72,6 +72,7 @@ void run_dfg(const DfgCliOptions& o, const std::vector<std::string>& given) {
   options.size = o.size;
   options.samples = o.samples;
   options.multiscatter = o.multiscatter;
+  work_begins();
   const DfgTable t = bake_dfg(options);
   const std::string ext = lower_ext(out);
   if (ext == ".exr") {

@@ -20,6 +20,7 @@ struct ExploreOptions {
 void run_explore(const ExploreOptions& o, bool port_given) {
   if (port_given && !o.serve) throw UsageError("--port: only with --serve");
   if (o.port < 0 || o.port > 65535) throw UsageError(fmt::format("--port: {} is out of range [0, 65535]", o.port));
+  work_begins();
   const auto written = unwrap(explore::write_site(o.out));
   const std::filesystem::path index = std::filesystem::absolute(o.out) / "index.html";
   fmt::print("wrote {} files to {}\n", written.size(), std::filesystem::absolute(o.out).string());

@@ -63,6 +63,7 @@ void run_merge(const MergeCliOptions& o) {
     if (!o.png.empty()) outputs.push_back({"--png", o.png});
     check_outputs(inputs, outputs);
   }
+  work_begins();
   ProgressBar bar("merge", o.progress);
   auto merged = merge_shards(parts, [&](double f) { bar.update(f); });
   bar.finish();

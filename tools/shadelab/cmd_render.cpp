@@ -21,7 +21,6 @@
 #include "shadelab/render/path_tracer.h"
 #include "shadelab/render/shard_file.h"
 #include "shadelab/render/threads.h"
-#include "shadelab/scene/default_scene.h"
 #include "shadelab/scene/scene_json.h"
 
 namespace shadelab::cli {
@@ -176,7 +175,7 @@ void run_render(const RenderCliOptions& o) {
   if (o.threads_given && o.threads < 0) throw UsageError(fmt::format("--threads: {} must be >= 0", o.threads));
   check_range("--threads", o.threads_given, o.threads, 0, max_render_threads);
   if (!std::isfinite(o.exposure)) throw UsageError("--exposure: must be finite");
-  Scene scene = o.scene.empty() ? default_scene() : unwrap(load_scene(o.scene));
+  Scene scene = o.scene.empty() ? built_in_scene() : unwrap(load_scene(o.scene));
   if (o.seed_given) scene.settings.seed = parse_seed("--seed", o.seed);
   RenderOptions ro;
   ro.spp = o.spp_given ? o.spp : -1;
@@ -243,6 +242,7 @@ void run_render(const RenderCliOptions& o) {
   film.exposure_stops = o.exposure;
   film.curve = o.filmic ? ToneCurve::filmic : ToneCurve::clamp;
   film.aovs = o.aov;
+  work_begins();
 
   ProgressBar bar("render", o.progress);
   ro.progress = [&](double f, int) { bar.update(f); };

@@ -62,6 +62,7 @@ void run_verify(const ShaderOptions& o, const std::string& model) {
   else if (o.device == "vulkan") v.device = shaders::VerifyDevice::vulkan;
   else if (o.device == "webgl2") v.device = shaders::VerifyDevice::webgl2;
   else throw UsageError("--device: unknown device '" + o.device + "' (devices: all, vulkan, webgl2)");
+  work_begins();
   const shaders::VerifyReport r = unwrap(shaders::verify_shader(v));
   const shaders::DeviceReport& c = r.combined;
   if (o.json) {
@@ -99,10 +100,11 @@ void run_export(const ShaderOptions& o, const std::string& model) {
   e.uniforms = o.uniforms;
   e.command = command_line(o, model);
   const shaders::ShaderExport ex = unwrap(shaders::export_model(model, parse_assignments(o.params), e));
+  if (!o.tables_out.empty() && ex.tables_data.empty()) {
+    throw UsageError("--tables-out: the model '" + model + "' with these parameters reads no tables");
+  }
+  work_begins();
   if (!o.tables_out.empty()) {
-    if (ex.tables_data.empty()) {
-      throw UsageError("--tables-out: the model '" + model + "' with these parameters reads no tables");
-    }
     unwrap(write_file_atomically(o.tables_out, std::vector<char>(ex.tables_data.begin(), ex.tables_data.end())));
   }
   if (o.out.empty()) {
