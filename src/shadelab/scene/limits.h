@@ -38,11 +38,13 @@ inline constexpr double max_gloss_exponent = 1e6;
 inline constexpr int max_camera_side = 16384;
 inline constexpr long long max_render_pixels = 1LL << 25;
 // The memory a render takes per pixel, beyond the scene, through writing its files (EXR, PNG): the
-// reference renderer's accumulators and image, the tone-mapped copy and the encoders' buffers. With AOVs
-// (albedo, normal, depth) the larger figure. At max_render_pixels: 2 GiB, or 6 GiB with AOVs. Checked by
-// MemoryBound.RenderStaysWithinItsPerPixelBudget (tools/shadelab/cli_memory_test.cpp) under RLIMIT_AS.
-inline constexpr std::uint64_t render_bytes_per_pixel = 64;
-inline constexpr std::uint64_t render_aov_bytes_per_pixel = 192;
+// reference renderer's exact accumulators (48 bytes of 128-bit fixed-point sums and a 4-byte non-finite
+// count, render/fixed_sum.h: what makes shards merge bit for bit) and image, the tone-mapped copy and the
+// encoders' buffers. With AOVs (albedo, normal, depth) the larger figure. At max_render_pixels: 3 GiB, or
+// 7 GiB with AOVs. Checked by MemoryBound.RenderStaysWithinItsPerPixelBudget
+// (tools/shadelab/cli_memory_test.cpp) under RLIMIT_AS.
+inline constexpr std::uint64_t render_bytes_per_pixel = 96;
+inline constexpr std::uint64_t render_aov_bytes_per_pixel = 224;
 // The images one scene holds, together (file and procedural textures, the environment map; 12 bytes a
 // pixel): a scene naming many large images is refused once they pass it, each read given only what is left
 // (image_io.h, read_image's budget), so loading a scene's images never allocates more than this.
