@@ -553,8 +553,10 @@ TEST(CliPlot, TheGgxFamilyInLobeAlbedoAndSheet) {
                                 "--out " + dir + "family_lobe.svg --json"));
   expect_svg(dir + "family_lobe.svg", 800, 600);
   ASSERT_EQ(lobe["series"].size(), 3u);
-  const std::vector<shadelab::BrdfPtr> models = {brdf("ggx", {{"roughness", "0.4"}}), brdf("burley", {}),
-                                                 brdf("filament", {})};
+  std::vector<shadelab::BrdfPtr> models;
+  models.push_back(brdf("ggx", {{"roughness", "0.4"}}));
+  models.push_back(brdf("burley", {}));
+  models.push_back(brdf("filament", {}));
   for (std::size_t m = 0; m < 3; ++m) {
     const auto& s = lobe["series"][m];
     for (std::size_t i = 3; i < 36; i += 8) {
