@@ -1,6 +1,8 @@
 // Cost per call of eval, pdf and sample for every registered model, at default parameters, on a fixed
 // set of random direction pairs (so the branch mix is the same for every model). The baseline measured in
 // the same run is "lambert", the cheapest model: compare models as ratios to it, not as absolute times.
+// eval_batch/MODEL: Brdf::eval_batch over all the pairs per iteration, reported per pair (items_per_second),
+// against eval/MODEL, one virtual call per pair.
 //
 //   ./build/release/bench/brdf_bench --benchmark_filter=eval
 #include <benchmark/benchmark.h>
@@ -50,6 +52,18 @@ void bench_eval(benchmark::State& state, const std::string& model) {
   state.SetItemsProcessed(state.iterations());
 }
 
+void bench_eval_batch(benchmark::State& state, const std::string& model) {
+  const auto f = make_brdf(model).value();
+  const auto& in = inputs();
+  std::vector<Rgb> out(kPairs);
+  for (auto _ : state) {
+    f->eval_batch(in.wi.data(), in.wo.data(), out.data(), kPairs);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(kPairs));
+}
+
 void bench_pdf(benchmark::State& state, const std::string& model) {
   const auto f = make_brdf(model).value();
   const auto& in = inputs();
@@ -75,6 +89,7 @@ void bench_sample(benchmark::State& state, const std::string& model) {
 const bool registered = [] {
   for (const auto& m : brdf_models()) {
     benchmark::RegisterBenchmark(("eval/" + m.name).c_str(), bench_eval, m.name);
+    benchmark::RegisterBenchmark(("eval_batch/" + m.name).c_str(), bench_eval_batch, m.name);
     benchmark::RegisterBenchmark(("pdf/" + m.name).c_str(), bench_pdf, m.name);
     benchmark::RegisterBenchmark(("sample/" + m.name).c_str(), bench_sample, m.name);
   }

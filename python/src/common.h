@@ -79,31 +79,69 @@ inline bool normalize_direction(Vec3& v) {
   v = v / len;
   return true;
 }
-// The loop of eval, pdf and sample: body(a, b, i) for each pair i, with a and b first copied out of the
-// arrays into small buffers (chunks of 256 pairs) and checked by check_a / check_b, which may change them
-// (normalize) and return false to stop. Copying a chunk ahead, rather than each pair just before the call,
-// keeps the model's loads of wi and wo away from the stores that made them (a store-to-load forwarding
-// stall when a model reads x and y with one 16-byte load). Returns -1, or the array row where a check
-// failed, with *which = 0 for a, 1 for b. Runs without the GIL: no Python calls inside.
+// Rows of a C-contiguous (N, 3) float64 array as Vec3 and a (N, 3) result as Rgb: both are three packed
+// doubles, so the library's batch entries read and write NumPy's memory in place.
+static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Rgb) == 3 * sizeof(double), "packed like (N, 3) rows");
+inline const Vec3* vec3_rows(const Vectors& v) { return reinterpret_cast<const Vec3*>(v.data); }
+inline Rgb* rgb_rows(double* o) { return reinterpret_cast<Rgb*>(o); }
+
+// Whether normalize_direction leaves each of these m vectors as it is (unit within 4 ulp; false for NaN).
+// Branch-free over the chunk, so it costs a few multiply-adds per row on data the batch reads next anyway.
+inline bool all_unit(const Vec3* v, py::ssize_t m) {
+  bool unit = true;
+  for (py::ssize_t j = 0; j < m; ++j) {
+    const double n2 = dot(v[j], v[j]);
+    unit &= std::abs(n2 - 1.0) <= 4.0 * std::numeric_limits<double>::epsilon();
+  }
+  return unit;
+}
+
+// The walk of eval, pdf and sample over the pairs in chunks of 256: body(a, b, start, m) with a[j], b[j]
+// (j < m) the checked pairs start + j. A chunk whose rows all pass check_a / check_b unchanged (unit
+// directions, fast_a / fast_b true) and are not broadcast is given as the arrays' own memory, no copy.
+// Any other chunk is first copied into small buffers pair by pair and checked (check_a, check_b may
+// change a row, e.g. normalize it, and return false to stop): copying a whole chunk ahead, rather than
+// each pair just before its call, keeps the model's loads away from the stores that made them (a
+// store-to-load forwarding stall when a model reads x and y with one 16-byte load). Returns -1, or the
+// array row where a check failed, with *which = 0 for a, 1 for b (the first failing pair, a before b).
+// Runs without the GIL: no Python calls inside.
 template <typename CheckA, typename CheckB, typename Body>
-py::ssize_t for_each_pair(const Pairs& p, CheckA check_a, CheckB check_b, Body body, int* which) {
+py::ssize_t for_each_chunk(const Pairs& p, CheckA check_a, bool fast_a, CheckB check_b, bool fast_b, Body body,
+                           int* which) {
   constexpr py::ssize_t chunk = 256;
   Vec3 buf_a[chunk];
   Vec3 buf_b[chunk];
+  const Vec3* rows_a = vec3_rows(p.a);
+  const Vec3* rows_b = vec3_rows(p.b);
   for (py::ssize_t start = 0; start < p.count; start += chunk) {
     const py::ssize_t m = std::min(chunk, p.count - start);
+    if (fast_a && fast_b && p.step_a == 1 && p.step_b == 1 && all_unit(rows_a + start, m) &&
+        all_unit(rows_b + start, m)) {
+      body(rows_a + start, rows_b + start, start, m);
+      continue;
+    }
     for (py::ssize_t j = 0; j < m; ++j) {
       const py::ssize_t ra = (start + j) * p.step_a;
       const py::ssize_t rb = (start + j) * p.step_b;
-      buf_a[j] = p.a.at(ra);
-      buf_b[j] = p.b.at(rb);
+      buf_a[j] = rows_a[ra];
+      buf_b[j] = rows_b[rb];
       if (!check_a(buf_a[j])) return *which = 0, ra;
       if (!check_b(buf_b[j])) return *which = 1, rb;
     }
-    for (py::ssize_t j = 0; j < m; ++j) body(buf_a[j], buf_b[j], start + j);
+    body(static_cast<const Vec3*>(buf_a), static_cast<const Vec3*>(buf_b), start, m);
   }
   return -1;
 }
+
+// Pairs of directions, both checked by normalize_direction (eval and pdf).
+template <typename Body>
+py::ssize_t for_each_direction_chunk(const Pairs& p, Body body, int* which) {
+  return for_each_chunk(p, normalize_direction, true, normalize_direction, true, body, which);
+}
+
+// When `out` shares memory with an input (out=wi, or an overlapping view), the input is copied first, so
+// every row is read before any result is written over it, as NumPy's ufuncs do.
+void detach_from_output(Pairs& p, const double* out, py::ssize_t out_doubles);
 
 // "wi: row 3 (0, 0, 0) is not a direction (zero length or not finite)".
 [[noreturn]] void fail_direction(const std::string& name, const Vectors& v, py::ssize_t row);
@@ -113,6 +151,13 @@ long long to_integer(py::handle v, const std::string& name);
 
 // A scalar or a 1-D sequence of numbers; *scalar tells which was given.
 std::vector<double> to_numbers(py::handle obj, const std::string& name, bool* scalar = nullptr);
+
+// One number (a float, an int or a 0-d array), or a ValueError "NAME: expected one number".
+double to_number(py::handle obj, const std::string& name);
+
+// Angles in degrees, each finite and in [0, 90) (or [0, 90] with up_to_90), as the CLI checks --theta:
+// "theta_deg: 95 is out of range [0, 90) degrees". A scalar or a 1-D sequence; *scalar tells which.
+std::vector<double> to_angles_deg(py::handle obj, const std::string& name, bool up_to_90, bool* scalar = nullptr);
 
 // The caller's output array for `out=`: writable, C-contiguous float64 of exactly this shape.
 double* output_buffer(py::handle out, const std::vector<py::ssize_t>& shape, const std::string& name);

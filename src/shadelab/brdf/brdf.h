@@ -9,8 +9,10 @@
 //   below the horizon (a glossy lobe about the mirror direction near grazing); its weight is then 0.
 // - weight = f_r(wi, wo) cos(theta_i) / pdf, the Monte Carlo estimator's factor; 0 where pdf is 0.
 // - If wo is on or below the horizon, sample returns pdf 0 and weight 0.
+// - eval_batch(wi, wo, out, n) is eval over n pairs of contiguous arrays, the same bits as n calls.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <optional>
 #include <string>
@@ -62,6 +64,14 @@ class Brdf {
   virtual ~Brdf() = default;
 
   virtual Rgb eval(const Vec3& wi, const Vec3& wo) const = 0;
+  // out[i] = eval(wi[i], wo[i]) for i < n, bit for bit, with the loop inside the model: one virtual call for
+  // the whole batch, the model's state read once and its kernel inlined into the loop. This is how to
+  // evaluate many pairs (the Python module's Brdf.eval calls it; bench/python_eval_baseline.cpp measures
+  // it). Every registered model overrides it with eval_kernel_batch (below); this default, for test
+  // doubles, calls eval n times.
+  virtual void eval_batch(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n) const {
+    for (std::size_t i = 0; i < n; ++i) out[i] = eval(wi[i], wo[i]);
+  }
   virtual double pdf(const Vec3& wi, const Vec3& wo) const = 0;
   // u picks the direction within a lobe, u_lobe picks the lobe; all three in [0, 1).
   virtual BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const = 0;
@@ -80,5 +90,14 @@ class Brdf {
 };
 
 using BrdfPtr = std::unique_ptr<const Brdf>;
+
+// The loop of every model's eval_batch: out[i] = Kernel(state, wi[i], wo[i]), the same call the model's
+// eval makes. The state is copied into a local once, so the stores to out cannot alias it and it stays in
+// registers; Kernel is a template argument, so the call is direct and inlines.
+template <auto Kernel, typename State>
+void eval_kernel_batch(const State& state, const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n) {
+  const State s = state;
+  for (std::size_t i = 0; i < n; ++i) out[i] = Kernel(s, wi[i], wo[i]);
+}
 
 }  // namespace shadelab

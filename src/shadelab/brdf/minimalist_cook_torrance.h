@@ -19,6 +19,9 @@ class MinimalistCookTorrance final : public LayeredBrdf {
   Rgb eval(const Vec3& wi, const Vec3& wo) const override {
     return kernel::minimalist_cook_torrance_eval(m_k, wi, wo);
   }
+  void eval_batch(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n) const override {
+    eval_kernel_batch<kernel::minimalist_cook_torrance_eval>(m_k, wi, wo, out, n);
+  }
   std::optional<KernelBinding> kernel_binding() const override;
 
  protected:

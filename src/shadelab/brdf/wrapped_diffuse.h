@@ -21,6 +21,9 @@ class WrappedDiffuse final : public Brdf {
  public:
   WrappedDiffuse(const Rgb& kd, double w) : m_kd(kd), m_w(w), m_kp{kd, w}, m_k(kernel::wrapped_diffuse_prepare(m_kp)) {}
   Rgb eval(const Vec3& wi, const Vec3& wo) const override;
+  void eval_batch(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n) const override {
+    eval_kernel_batch<kernel::wrapped_diffuse_eval>(m_k, wi, wo, out, n);
+  }
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
   bool is_reciprocal() const override { return m_w == 0.0 || m_kd.is_black(); }
