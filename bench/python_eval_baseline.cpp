@@ -1,8 +1,10 @@
 // The C++ baselines of bench/python_eval_overhead.py: the two plain ways a C++ user evaluates N direction
 // pairs with the library, the output allocated once:
 //   eval_batch/MODEL: f->eval_batch(wi, wo, out, n), the library's batch entry (one virtual call, the
-//                     model's kernel inlined into the loop): the fastest, and what Python's Brdf.eval calls;
+//                     model's kernel inlined into the loop, no check): the fastest;
 //   eval_loop/MODEL:  for each i, out[i] = f->eval(wi[i], wo[i]) (one virtual call per pair).
+// and, for the record, eval_batch_checked/MODEL: the same batch with its unit-length check of every
+// direction, the entry Python's Brdf.eval calls on the arrays in place.
 // The script writes the pairs it gives to Python's Brdf.eval into a file and runs this program on the same
 // file, alternating the two in one run.
 //
@@ -51,6 +53,21 @@ void eval_batch(benchmark::State& state) {
   std::vector<Rgb> out(n);
   for (auto _ : state) {
     f.eval_batch(g_wi.data(), g_wo.data(), out.data(), n);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
+}
+
+void eval_batch_checked(benchmark::State& state) {
+  const Brdf& f = *g_brdf;
+  const std::size_t n = g_wi.size();
+  std::vector<Rgb> out(n);
+  for (auto _ : state) {
+    if (f.eval_batch_checked(g_wi.data(), g_wo.data(), out.data(), n) != n) {
+      state.SkipWithError("a direction of the pairs is not unit length");
+      break;
+    }
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
@@ -114,6 +131,8 @@ int main(int argc, char** argv) {
   }
   benchmark::RegisterBenchmark(("eval_batch/" + model).c_str(), eval_batch)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark(("eval_loop/" + model).c_str(), eval_loop)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark(("eval_batch_checked/" + model).c_str(), eval_batch_checked)
+      ->Unit(benchmark::kMillisecond);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

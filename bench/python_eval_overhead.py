@@ -3,8 +3,9 @@
 
 Both sides evaluate the same N unit-length pairs (written to a file for the C++ program), single-threaded,
 for every registered model. The C++ side (bench/python_eval_baseline.cpp, Google Benchmark) measures the
-two plain ways to do it with the library: Brdf::eval_batch over the arrays (the best; the entry Python's
-eval calls, chunk by chunk) and the loop of per-pair eval calls. The sides are alternated ROUNDS times in
+two plain ways to do it with the library: Brdf::eval_batch over the arrays (the best) and the loop of
+per-pair eval calls; and, as a column, eval_batch_checked (the same batch checking that each direction is
+unit length), which Python's eval calls on the arrays in place. The sides are alternated ROUNDS times in
 one run, and each ratio is Python's best CPU time over C++'s best CPU time over all rounds (CPU time,
 which other processes on a shared machine distort least; the best time, which they can only lengthen),
 with the median of the per-round ratios beside it. A benchmark, not a test: timings on a shared machine
@@ -14,8 +15,8 @@ vary, the ratio measured in one run is what means something (shared/design/PERFO
     /usr/bin/python3 bench/python_eval_overhead.py --build build/release
 
 Python's eval does what the C++ calls do not: converts the arrays (no copy for C-contiguous float64),
-checks each direction as the CLI does (a unit direction is used in place; any other chunk is copied and
-normalized), and allocates the (N, 3) result unless out= is given (the C++ output is allocated once, so
+checks each direction as the CLI does (unit directions are used in place, checked inside the library's
+loop; from the first that is not, a chunk is copied and normalized), and allocates the (N, 3) result unless out= is given (the C++ output is allocated once, so
 out= is the like-for-like figure). Both are reported.
 """
 import argparse
@@ -66,7 +67,7 @@ def main():
     print(f"shadelab {shadelab.__version__}: Brdf.eval on {n} pairs, Python (this process) vs C++ ({baseline.name}: "
           f"eval_batch and the per-pair eval loop); CPU ms, best of {args.repeats} calls per round, {args.rounds} rounds; "
           f"ratio = Python / C++ (best over rounds), median of per-round ratios in parentheses")
-    print(f"{'model':<26} {'batch ms':>9} {'loop ms':>8} {'eval ms':>8} {'/batch':>14} {'/loop':>14} "
+    print(f"{'model':<26} {'batch ms':>9} {'loop ms':>8} {'checked':>8} {'eval ms':>8} {'/batch':>14} {'/loop':>14} "
           f"{'out= ms':>8} {'/batch':>14} {'/loop':>14}")
     with tempfile.TemporaryDirectory() as tmp:
         pairs_file = Path(tmp) / "pairs.bin"
@@ -78,7 +79,7 @@ def main():
             out = np.empty((n, 3))
             env = dict(os.environ, SHADELAB_BENCH_PAIRS=str(pairs_file), SHADELAB_BENCH_MODEL=model,
                        SHADELAB_BENCH_PARAMS=";".join(f"{k}={v}" for k, v in params.items()))
-            batch, loop, py, py_out = [], [], [], []
+            batch, loop, checked, py, py_out = [], [], [], [], []
             for _ in range(args.rounds):
                 r = subprocess.run([str(baseline), f"--benchmark_repetitions={args.repeats}",
                                     "--benchmark_format=json", "--benchmark_min_time=0.05"],
@@ -87,6 +88,7 @@ def main():
                 # ms (Unit(kMillisecond))
                 batch.append(min(b["cpu_time"] for b in runs if b["run_name"].startswith("eval_batch/")))
                 loop.append(min(b["cpu_time"] for b in runs if b["run_name"].startswith("eval_loop/")))
+                checked.append(min(b["cpu_time"] for b in runs if b["run_name"].startswith("eval_batch_checked/")))
                 py.append(best_ms(lambda: f.eval(wi, wo), args.repeats))
                 py_out.append(best_ms(lambda: f.eval(wi, wo, out=out), args.repeats))
             assert np.array_equal(f.eval(wi, wo), out)
@@ -95,7 +97,7 @@ def main():
                 return f"{min(p) / min(c):6.3f} ({statistics.median(a / b for a, b in zip(p, c)):5.3f})"
 
             label = model + "".join(f" {k}={v}" for k, v in params.items())
-            print(f"{label:<26} {min(batch):9.2f} {min(loop):8.2f} {min(py):8.2f} {ratio(py, batch):>14} "
+            print(f"{label:<26} {min(batch):9.2f} {min(loop):8.2f} {min(checked):8.2f} {min(py):8.2f} {ratio(py, batch):>14} "
                   f"{ratio(py, loop):>14} {min(py_out):8.2f} {ratio(py_out, batch):>14} {ratio(py_out, loop):>14}",
                   flush=True)
 

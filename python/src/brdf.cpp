@@ -154,16 +154,22 @@ py::object eval(const PyBrdf& b, py::handle wi, py::handle wo, py::handle out) {
     o = output_buffer(out, shape, "out");
     detach_from_output(p, o, 3 * p.count);
   }
-  // The library's batch entry evaluates each chunk (the loop and the kernel are the library's, as in
-  // bench/python_eval_baseline.cpp); this side only checks the directions, in place when they are unit.
+  // The loop and the kernel are the library's (Brdf::eval_batch_checked, as bench/python_eval_baseline.cpp
+  // calls it): unit directions are read from NumPy's arrays in place, checked in the library's own loop;
+  // from the first pair that is not, a chunk is copied, normalized and given to eval_batch, and the walk
+  // goes back to the arrays. Broadcast rows always take the copy.
   const Brdf& f = *b.f;
   Rgb* rows = rgb_rows(o);
   int which = 0;
   py::ssize_t bad = -1;
   {
     py::gil_scoped_release release;
-    bad = for_each_direction_chunk(
-        p, [&](const Vec3* a, const Vec3* c, py::ssize_t start, py::ssize_t m) {
+    bad = for_each_chunk(
+        p, normalize_direction, normalize_direction,
+        [&](const Vec3* a, const Vec3* c, py::ssize_t start, py::ssize_t rest) {
+          return static_cast<py::ssize_t>(f.eval_batch_checked(a, c, rows + start, static_cast<std::size_t>(rest)));
+        },
+        [&](const Vec3* a, const Vec3* c, py::ssize_t start, py::ssize_t m) {
           f.eval_batch(a, c, rows + start, static_cast<std::size_t>(m));
         }, &which);
   }
@@ -217,7 +223,7 @@ py::tuple sample(const PyBrdf& b, py::handle wo, py::handle u) {
   {
     py::gil_scoped_release release;
     bad = for_each_chunk(
-        p, normalize_direction, true, in_unit_cube, false,
+        p, normalize_direction, in_unit_cube, [](const Vec3*, const Vec3*, py::ssize_t, py::ssize_t) { return py::ssize_t{0}; },
         [&](const Vec3* wo_rows, const Vec3* u_rows, py::ssize_t start, py::ssize_t m) {
           for (py::ssize_t j = 0; j < m; ++j) {
             const py::ssize_t i = start + j;

@@ -12,13 +12,15 @@ class Lambert final : public Brdf {
  public:
   explicit Lambert(const Rgb& kd) : m_kd(kd), m_kp{kd}, m_k(kernel::lambert_prepare(m_kp)) {}
   Rgb eval(const Vec3& wi, const Vec3& wo) const override;
-  void eval_batch(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n) const override {
-    eval_kernel_batch<kernel::lambert_eval>(m_k, wi, wo, out, n);
-  }
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
   Rgb diffuse_albedo() const override { return m_kd; }
   std::optional<KernelBinding> kernel_binding() const override;
+
+ protected:
+  std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {
+    return eval_kernel_batch<kernel::lambert_eval>(m_k, wi, wo, out, n, check_unit);
+  }
 
  private:
   Rgb m_kd;

@@ -25,15 +25,16 @@ class Ward final : public LayeredBrdf {
  public:
   Ward(const Rgb& kd, const Rgb& ks, double alpha_x, double alpha_y);
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::ward_eval(m_k, wi, wo); }
-  void eval_batch(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n) const override {
-    eval_kernel_batch<kernel::ward_eval>(m_k, wi, wo, out, n);
-  }
   std::optional<KernelBinding> kernel_binding() const override;
 
   // The exponent's argument tan^2(theta_h)(cos^2/ax^2 + sin^2/ay^2) for a unit half vector h.
   double slope_term(const Vec3& h) const;
 
  protected:
+  std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {
+    return eval_kernel_batch<kernel::ward_eval>(m_k, wi, wo, out, n, check_unit);
+  }
+
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 

@@ -21,15 +21,17 @@ class WrappedDiffuse final : public Brdf {
  public:
   WrappedDiffuse(const Rgb& kd, double w) : m_kd(kd), m_w(w), m_kp{kd, w}, m_k(kernel::wrapped_diffuse_prepare(m_kp)) {}
   Rgb eval(const Vec3& wi, const Vec3& wo) const override;
-  void eval_batch(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n) const override {
-    eval_kernel_batch<kernel::wrapped_diffuse_eval>(m_k, wi, wo, out, n);
-  }
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
   bool is_reciprocal() const override { return m_w == 0.0 || m_kd.is_black(); }
   Rgb diffuse_albedo() const override { return m_kd; }  // the wrap itself is applied by SH band factors
   double wrap() const { return m_w; }
   std::optional<KernelBinding> kernel_binding() const override;
+
+ protected:
+  std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {
+    return eval_kernel_batch<kernel::wrapped_diffuse_eval>(m_k, wi, wo, out, n, check_unit);
+  }
 
  private:
   Rgb m_kd;
