@@ -4,6 +4,11 @@
 // An option that a subcommand does not use is refused (exit 2) rather than ignored; an output that is the
 // input, or another output of the same command, is refused; a KTX output says how many values it clamped
 // to the half-float range.
+//
+// Cube outputs choose their container by extension: .ktx2 (KTX 2.0), .ktx (KTX 1.1), .dds (DDS with the DX10
+// header) hold the six faces (and the specular mip chain); .exr, .hdr, .pic, .png hold an image layout
+// (--layout). --format chooses the texel format of the containers: rgba16f (default), rgba32f, rg11b10f,
+// rgb9e5 (texel_format.h; .ktx holds the first two).
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -13,8 +18,11 @@
 
 #include "cli_common.h"
 #include "progress.h"
+#include "shadelab/envmap/dds.h"
 #include "shadelab/envmap/irradiance.h"
 #include "shadelab/envmap/ktx.h"
+#include "shadelab/envmap/ktx2.h"
+#include "shadelab/envmap/texel_format.h"
 #include "shadelab/envmap/latlong.h"
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/envmap/sh.h"
@@ -35,6 +43,8 @@ struct BakeOptions {
   std::string layout = "hcross";
   std::string window = "none";
   int mips = 0;
+  int levels = 0;                 // specular: --levels, the same as --mips
+  std::string format = "rgba16f";  // texel format of .ktx2 / .ktx / .dds outputs
   double gloss_scale = 10.0;
   double gloss_bias = 1.0;
   bool exr_faces = true;
@@ -124,26 +134,84 @@ void report_clamped(const fs::path& path, const KtxEncodeInfo& info) {
 }
 
 bool is_ktx(const fs::path& path) { return lower(path.extension().string()) == ".ktx"; }
+bool is_ktx2(const fs::path& path) { return lower(path.extension().string()) == ".ktx2"; }
+bool is_dds(const fs::path& path) { return lower(path.extension().string()) == ".dds"; }
+// A container that stores the six faces (and mip levels) rather than an image layout.
+bool is_cube_container(const fs::path& path) { return is_ktx(path) || is_ktx2(path) || is_dds(path); }
 
-// The --layout applies to image outputs only; a .ktx output stores the six faces.
+// --format: the texel format of a container output (texel_format.h); refused for image outputs.
+TexelFormat check_format(const BakeOptions& o, const fs::path& out) {
+  const auto f = parse_texel_format(o.format);
+  if (!f) throw UsageError("--format: '" + o.format + "' is not one of rgba16f | rgba32f | rg11b10f | rgb9e5");
+  if (o.has("--format") && !is_cube_container(out)) {
+    throw UsageError("--format applies to .ktx2, .ktx and .dds outputs, not '" + out.string() + "'");
+  }
+  if (is_ktx(out) && *f != TexelFormat::rgba16f && *f != TexelFormat::rgba32f) {
+    throw UsageError("--format: a .ktx (KTX 1) output holds rgba16f or rgba32f; write .ktx2 or .dds for " + o.format);
+  }
+  return *f;
+}
+
+// The --layout applies to image outputs only; a .ktx, .ktx2 or .dds output stores the six faces.
 void check_layout(const BakeOptions& o, const fs::path& out) {
-  if (is_ktx(out) && o.has("--layout")) {
-    throw UsageError("--layout does not apply to a .ktx output ('" + out.string() + "' stores the six faces as a cube map)");
+  if (is_cube_container(out) && o.has("--layout")) {
+    throw UsageError("--layout does not apply to a " + lower(out.extension().string()) + " output ('" + out.string() +
+                     "' stores the six faces as a cube map)");
   }
   if (o.layout != "hcross" && o.layout != "vcross" && o.layout != "latlong") {
     throw UsageError("--layout: '" + o.layout + "' is not one of hcross | vcross | latlong");
   }
-  if (!is_ktx(out)) require_extension("--out", out, {".exr", ".hdr", ".pic", ".png", ".ktx"}, "the cube map");
+  if (!is_cube_container(out)) require_extension("--out", out, {".exr", ".hdr", ".pic", ".png", ".ktx", ".ktx2", ".dds"}, "the cube map");
+  check_format(o, out);
 }
 
-std::uint64_t write_cube(const CubeMap& cube, const fs::path& path, const std::string& layout) {
-  const std::string ext = lower(path.extension().string());
-  if (ext == ".ktx") {
-    KtxEncodeInfo info;
-    unwrap(write_ktx_cubemap({cube}, path, KtxPixelType::half, &info));
-    report_clamped(path, info);
-    return info.clamped_values;
+// The key/value data of a KTX 2 output (ktx2.h adds KTXorientation and KTXwriter).
+KtxMetadata ktx2_metadata(const std::string& content, const nlohmann::json& mip_mapping = nullptr) {
+  KtxMetadata kv = {{"shadelab.content", content},
+                    {"shadelab.cube_convention", "faces +X, -X, +Y, -Y, +Z, -Z with the OpenGL / Vulkan cube map "
+                                                 "orientation (OpenGL 4.6 table 8.19), row 0 is t = 0; world +Y up"}};
+  if (!mip_mapping.is_null()) kv.emplace_back("shadelab.mip_mapping", mip_mapping.dump());
+  return kv;
+}
+
+// Writes a mip chain to a container chosen by extension (.ktx, .ktx2, .dds); warns about clamped values.
+std::uint64_t write_container(const std::vector<CubeMap>& levels, const fs::path& path, TexelFormat format,
+                              const KtxMetadata& metadata) {
+  TexelEncodeInfo info;
+  if (is_ktx(path)) {
+    KtxEncodeInfo k;
+    unwrap(write_ktx_cubemap(levels, path, format == TexelFormat::rgba32f ? KtxPixelType::float32 : KtxPixelType::half, &k));
+    report_clamped(path, k);
+    return k.clamped_values;
   }
+  if (is_ktx2(path)) {
+    unwrap(write_ktx2_cubemap(levels, path, format, metadata, &info));
+  } else {
+    unwrap(write_dds_cubemap(levels, path, format, &info));
+  }
+  if (info.clamped_values > 0 && format == TexelFormat::rgba16f) {
+    report_clamped(path, KtxEncodeInfo{info.clamped_values});
+  } else if (info.clamped_values > 0) {
+    warn(fmt::format("{}: {} values beyond the largest finite {} value were clamped to it", path.string(),
+                     info.clamped_values, texel_format_name(format)));
+  }
+  if (info.negative_values > 0) {
+    warn(fmt::format("{}: {} negative (or NaN) values were written as 0 ({} is unsigned)", path.string(),
+                     info.negative_values, texel_format_name(format)));
+  }
+  return info.clamped_values;
+}
+
+nlohmann::json format_json(const fs::path& out, TexelFormat f) {
+  if (is_ktx(out)) return {{"container", "ktx"}, {"format", texel_format_name(f)}};
+  if (is_ktx2(out)) return {{"container", "ktx2"}, {"format", texel_format_name(f)}, {"vk_format", vk_format_name(f)}};
+  if (is_dds(out)) return {{"container", "dds"}, {"format", texel_format_name(f)}, {"dxgi_format", dxgi_format_name(f)}};
+  return {{"container", lower(out.extension().string()).substr(1)}};
+}
+
+std::uint64_t write_cube(const CubeMap& cube, const fs::path& path, const std::string& layout, TexelFormat format,
+                         const std::string& content) {
+  if (is_cube_container(path)) return write_container({cube}, path, format, ktx2_metadata(content));
   Image img;
   if (layout == "hcross") {
     img = cube_to_cross(cube, CrossLayout::horizontal);
@@ -170,7 +238,9 @@ void run_irradiance(const BakeOptions& o) {
   const RadianceUnits units = parse_units(o.units);
   const fs::path out = o.out.empty() ? default_out(o, "_irradiance.exr") : fs::path(o.out);
   check_layout(o, out);
+  const TexelFormat format = check_format(o, out);
   check_bake_outputs(o, {{"--out", out}});
+  work_begins();
   // A lat-long input is convolved over its own texels (exact for the map as given: no resampling to a cube,
   // whose texels would move a bright low sun across the horizon of the normals below it), unless
   // --input-size asks for a cube of that size first.
@@ -181,12 +251,14 @@ void run_irradiance(const BakeOptions& o) {
   const CubeMap e = is_latlong(img) && !o.has("--input-size") ? irradiance_cube(img, size, units, opts)
                                                               : irradiance_cube(environment_to_cube(o, std::move(img)), size, units, opts);
   bar.finish();
-  const std::uint64_t clamped = write_cube(e, out, o.layout);
+  const std::string convention = units == RadianceUnits::game ? "E/pi: exit radiance of a white Lambert surface"
+                                                               : "E: irradiance, W/m^2 per unit of input radiance";
+  const std::uint64_t clamped = write_cube(e, out, o.layout, format, "irradiance, " + convention);
   if (o.json) {
-    print_json({{"output", out.string()}, {"size", size}, {"units", o.units}, {"clamped_values", clamped},
-                {"convention", units == RadianceUnits::game ? "E/pi: exit radiance of a white Lambert surface"
-                                                            : "E: irradiance, W/m^2 per unit of input radiance"},
-                {"seconds", elapsed_since(t0)}});
+    nlohmann::json j = {{"output", out.string()}, {"size", size}, {"units", o.units}, {"clamped_values", clamped},
+                        {"convention", convention}, {"seconds", elapsed_since(t0)}};
+    j.update(format_json(out, format));
+    print_json(j);
   } else {
     fmt::print("wrote {} ({} x {} faces, {} units)\n", out.string(), size, size, o.units);
   }
@@ -228,7 +300,7 @@ ShLight parse_sh_light(const std::string& text) {
 }
 
 void run_sh(const BakeOptions& o) {
-  refuse_options(o, "sh", {"--size", "--layout"}, "it writes nine coefficients, not a cube map");
+  refuse_options(o, "sh", {"--size", "--layout", "--format"}, "it writes nine coefficients, not a cube map");
   const RadianceUnits units = parse_units(o.units);
   const ShWindow window = parse_window(o.window);
   if (o.light_normalization != "d3dx" && o.light_normalization != "delta") {
@@ -243,6 +315,7 @@ void run_sh(const BakeOptions& o) {
     require_extension("--out", o.out, {".json"}, "the SH9 coefficients (JSON)");
     check_bake_outputs(o, {{"--out", o.out}});
   }
+  work_begins();
   // A lat-long input is projected texel by texel (each with its exact solid angle), without resampling to a
   // cube first, unless --input-size asks for that cube: the command then costs about one read of the file.
   Image img = read_environment_image(o);
@@ -303,8 +376,19 @@ void run_specular(const BakeOptions& o) {
   const int size = o.has("--size") ? o.size : 128;
   if (!is_power_of_two(size) || size > 2048) throw UsageError(fmt::format("--size: {} is not a power of two in [1, 2048]", size));
   const fs::path out = o.out.empty() ? default_out(o, "_specular.ktx") : fs::path(o.out);
-  if (lower(out.extension().string()) != ".ktx") throw UsageError("--out: the specular chain is written as .ktx, got '" + out.string() + "'");
+  if (!is_cube_container(out)) {
+    throw UsageError("--out: the specular chain is written as .ktx, .ktx2 or .dds, got '" + out.string() + "'");
+  }
+  const TexelFormat format = check_format(o, out);
   if (o.mips < 0 || o.mips > 32) throw UsageError(fmt::format("--mips: {} is out of range [0, 32]", o.mips));
+  if (o.has("--levels") && o.has("--mips")) throw UsageError("--levels and --mips are the same option: give one");
+  const int full_chain = static_cast<int>(std::log2(size)) + 1;  // down to 1 x 1
+  const char* levels_option = o.has("--levels") ? "--levels" : "--mips";
+  const int mip_count = o.has("--levels") ? o.levels : o.mips;
+  if ((o.has("--levels") && mip_count < 1) || mip_count > full_chain) {
+    throw UsageError(fmt::format("{}: {} is out of range [1, {}] for --size {} (log2(size) + 1 levels reach 1 x 1)",
+                                 levels_option, mip_count, full_chain, size));
+  }
   // Every level's exponent 2^(scale (1 - i/(M-1)) + bias) lies between 2^bias and 2^(scale + bias).
   if (!std::isfinite(o.gloss_scale) || o.gloss_scale < 0.0 || !std::isfinite(o.gloss_bias) ||
       o.gloss_bias < -max_gloss_log2 || o.gloss_scale + o.gloss_bias > max_gloss_log2) {
@@ -315,7 +399,7 @@ void run_specular(const BakeOptions& o) {
   const std::vector<NamedPath> planned = [&] {
     std::vector<NamedPath> v{{"--out", out}};
     if (o.exr_faces) {
-      const int levels = o.mips > 0 ? o.mips : static_cast<int>(std::log2(size)) + 1;
+      const int levels = mip_count > 0 ? mip_count : full_chain;
       static const char* face_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
       for (int m = 0; m < levels; ++m) {
         for (const char* f : face_names) {
@@ -326,10 +410,11 @@ void run_specular(const BakeOptions& o) {
     return v;
   }();
   check_bake_outputs(o, planned);
+  work_begins();
   const CubeMap env = load_environment(o);
   PrefilterOptions p;
   p.size = size;
-  p.mip_count = o.mips;
+  p.mip_count = mip_count;
   p.gloss_scale = o.gloss_scale;
   p.gloss_bias = o.gloss_bias;
   ProgressBar bar("specular", o.progress);
@@ -337,9 +422,15 @@ void run_specular(const BakeOptions& o) {
   auto chain = prefilter_specular(env, p);
   bar.finish();
   if (!chain) throw UsageError(chain.error().message);
-  KtxEncodeInfo ktx_info;
-  unwrap(write_ktx_cubemap(chain->levels, out, KtxPixelType::half, &ktx_info));
-  report_clamped(out, ktx_info);
+  const nlohmann::json mip_mapping = {
+      {"lobe", "phong"},
+      {"kernel", "normalized Phong (n+1)/(2pi) (R.L)^n"},
+      {"mapping", "level i of M holds the Phong exponent n_i = 2^(gloss_scale (1 - i/(M-1)) + gloss_bias); a shader "
+                  "with gloss g in [0, 1] reads level (1 - g)(M - 1)"},
+      {"gloss_scale", o.gloss_scale},
+      {"gloss_bias", o.gloss_bias},
+      {"exponents", chain->exponents}};
+  const std::uint64_t clamped = write_container(chain->levels, out, format, ktx2_metadata("prefiltered specular radiance", mip_mapping));
   std::vector<std::string> faces;
   if (o.exr_faces) {
     static const char* face_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
@@ -352,10 +443,12 @@ void run_specular(const BakeOptions& o) {
     }
   }
   if (o.json) {
-    print_json({{"output", out.string()}, {"exr_faces", faces}, {"size", size},
-                {"exponents", chain->exponents}, {"gloss_scale", o.gloss_scale}, {"gloss_bias", o.gloss_bias},
-                {"lobe", "normalized Phong (n+1)/(2pi) (R.L)^n"}, {"clamped_values", ktx_info.clamped_values},
-                {"seconds", elapsed_since(t0)}});
+    nlohmann::json j = {{"output", out.string()}, {"exr_faces", faces}, {"size", size},
+                        {"exponents", chain->exponents}, {"gloss_scale", o.gloss_scale}, {"gloss_bias", o.gloss_bias},
+                        {"lobe", "normalized Phong (n+1)/(2pi) (R.L)^n"}, {"clamped_values", clamped},
+                        {"levels", chain->levels.size()}, {"mip_mapping", mip_mapping}, {"seconds", elapsed_since(t0)}};
+    j.update(format_json(out, format));
+    print_json(j);
   } else {
     fmt::print("wrote {} ({} levels, Phong exponents {:.4g} .. {:.4g}) and {} EXR faces\n", out.string(),
                chain->levels.size(), chain->exponents.front(), chain->exponents.back(), faces.size());
@@ -366,20 +459,25 @@ void run_convert(const BakeOptions& o) {
   if (o.out.empty()) throw UsageError("convert: --out FILE is required");
   refuse_options(o, "convert", {"--units"}, "conversion changes no values");
   check_layout(o, o.out);
+  const TexelFormat format = check_format(o, o.out);
   check_bake_outputs(o, {{"--out", o.out}});
+  if (o.has("--size")) check_size("--size", o.size, 4096);
+  work_begins();
   CubeMap env = load_environment(o);
   if (o.has("--size")) {
-    check_size("--size", o.size, 4096);
     // Resample through the lat-long form with area filtering when the size changes.
     if (o.size != env.size) env = latlong_to_cube(cube_to_latlong(env, 4 * std::max(env.size, o.size)), o.size);
   }
-  const std::uint64_t clamped = write_cube(env, o.out, o.layout);
-  const std::string layout = is_ktx(o.out) ? "ktx" : o.layout;
+  const std::uint64_t clamped = write_cube(env, o.out, o.layout, format, "radiance");
+  const std::string layout = is_cube_container(o.out) ? lower(fs::path(o.out).extension().string()).substr(1) : o.layout;
   if (o.json) {
-    print_json({{"output", o.out}, {"size", env.size}, {"layout", layout}, {"clamped_values", clamped}});
+    nlohmann::json j = {{"output", o.out}, {"size", env.size}, {"layout", layout}, {"clamped_values", clamped}};
+    j.update(format_json(o.out, format));
+    print_json(j);
   } else {
     fmt::print("wrote {} ({} x {} faces as {})\n", o.out, env.size, env.size,
-               is_ktx(o.out) ? std::string("a KTX cube map") : o.layout);
+               is_ktx(o.out) ? std::string("a KTX cube map") : is_ktx2(o.out) ? std::string("a KTX 2 cube map")
+               : is_dds(o.out) ? std::string("a DDS cube map") : o.layout);
   }
 }
 
@@ -394,12 +492,15 @@ void add_bake_command(CLI::App& app, Command& command) {
     auto* sub = bake->add_subcommand(name, help);
     sub->add_option("INPUT", o->input, "environment: lat-long (2:1) or cube cross (4:3, 3:4); EXR, HDR or PNG")
         ->required();
-    sub->add_option("--out", o->out, "output file (.exr, .hdr, .png, .ktx; .json for sh)");
+    sub->add_option("--out", o->out, "output file (.ktx2, .ktx, .dds, .exr, .hdr, .png; .json for sh)");
     sub->add_option("--size", o->size, "output face size");
     sub->add_option("--input-size", o->input_size, "face size a lat-long input is resampled to (default: width/4, <= 512)");
     sub->add_option("--units", o->units, "game (E/pi: a constant 0.5 bakes to 0.5) or radiometric (E)")->capture_default_str();
     sub->add_option("--layout", o->layout, "image layout of cube outputs: hcross, vcross or latlong")->capture_default_str();
     sub->add_flag("--json", o->json, "machine-readable output");
+    sub->add_option("--format", o->format,
+                    "texel format of a .ktx2 / .dds output: rgba16f, rgba32f, rg11b10f or rgb9e5 (.ktx: the first two)")
+        ->capture_default_str();
     sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");
     if (std::string(name) == "sh") {
       sub->add_option("--window", o->window, "ringing window: none, hanning or lanczos")->capture_default_str();
@@ -413,6 +514,7 @@ void add_bake_command(CLI::App& app, Command& command) {
     }
     if (std::string(name) == "specular") {
       sub->add_option("--mips", o->mips, "number of mip levels (default: down to 1 x 1)");
+      sub->add_option("--levels", o->levels, "number of mip levels, at most log2(size) + 1 (the same as --mips)");
       sub->add_option("--gloss-scale", o->gloss_scale, "exponent of level i: 2^(scale (1 - i/(M-1)) + bias)")->capture_default_str();
       sub->add_option("--gloss-bias", o->gloss_bias, "see --gloss-scale")->capture_default_str();
       sub->add_flag("!--no-exr-faces", o->exr_faces, "do not write the per-level EXR faces");
@@ -427,7 +529,7 @@ void add_bake_command(CLI::App& app, Command& command) {
   };
   add("irradiance", "cosine-convolved irradiance cube map (brute force)", run_irradiance);
   add("sh", "nine RGB spherical-harmonic coefficients and their convention", run_sh);
-  add("specular", "prefiltered specular mip chain (normalized Phong lobes) as KTX plus EXR faces", run_specular);
+  add("specular", "prefiltered specular mip chain (normalized Phong lobes) as KTX 2, KTX or DDS plus EXR faces", run_specular);
   add("convert", "lat-long <-> cube cross conversion and format change", run_convert);
 }
 

@@ -88,6 +88,12 @@ Result<std::string> translate(std::string_view text, Lang lang, const std::strin
           if (!hlsl) {
             t[open].text = type_name(t[ty].text, lang) + "[" + t[size].text + "](";
             array_open = open;
+            // In GLSL the table is a global variable, not a const: glslang copies a const array into a function
+            // variable wherever it is indexed by a non-constant, and lavapipe then lowers every copy element by
+            // element (the 2112-entry GGX energy tables: 7 s to build the pipeline as const, 1 s as a global).
+            tok.text.clear();
+            if (k + 1 < t.size() && t[k + 1].kind == TokenKind::whitespace) t[k + 1].text.clear();
+            continue;
           }
         }
         if (hlsl) tok.text = "static const";

@@ -34,8 +34,8 @@ TEST(Translate, FileScopeConstants) {
 
 TEST(Translate, ConstantArrays) {
   const std::string sl = "const real TABLE[3] = {0.5, 0.25,\n  0.125};\n";
-  EXPECT_EQ(tr(sl, Lang::glsl), "const float TABLE[3] = float[3](0.5, 0.25,\n  0.125);\n");
-  EXPECT_EQ(tr(sl, Lang::essl), "const float TABLE[3] = float[3](0.5, 0.25,\n  0.125);\n");
+  EXPECT_EQ(tr(sl, Lang::glsl), "float TABLE[3] = float[3](0.5, 0.25,\n  0.125);\n");
+  EXPECT_EQ(tr(sl, Lang::essl), "float TABLE[3] = float[3](0.5, 0.25,\n  0.125);\n");
   EXPECT_EQ(tr(sl, Lang::hlsl), "static const float TABLE[3] = {0.5, 0.25,\n  0.125};\n");
   EXPECT_FALSE(translate("const real T[2] = 1.0;", Lang::glsl, "t.sl").has_value());
   EXPECT_FALSE(translate("const real T[2] = {{1.0}, {2.0}};", Lang::glsl, "t.sl").has_value());

@@ -90,6 +90,12 @@ const std::vector<std::pair<std::string, ParamAssignments>>& variants() {
     out.push_back({"lafortune", {{"lobes", "-1,-1,1,20;0.8,0.8,0.9,5;-0.5,-1.2,0.7,60"}}});
     out.push_back({"wrapped-diffuse", {{"w", "0"}}});
     out.push_back({"wrapped-diffuse", {{"w", "1"}, {"kd", "0.3,0.6,0.9"}}});
+    out.push_back({"cook-torrance", {{"d", "ggx"}, {"m", "0.4"}}});
+    out.push_back({"ggx", {{"ms", "kulla-conty"}, {"f", "conductor"}, {"ior", "0.18,0.42,1.37"}, {"k", "3.4,2.35,1.77"}, {"alpha", "0.6"}}});
+    out.push_back({"ggx", {{"g", "smith-separable"}, {"f", "dielectric"}, {"alpha_x", "0.4"}, {"alpha_y", "0.05"}, {"ms", "kulla-conty"}}});
+    out.push_back({"ggx", {{"f", "none"}, {"ks", "0.9,0.7,0.5"}, {"alpha", "0.1"}}});
+    out.push_back({"filament", {{"diffuse", "burley"}, {"energy_compensation", "off"}, {"metallic", "0.3"}}});
+    out.push_back({"filament", {{"metallic", "1"}, {"base_color", "0.95,0.64,0.54"}, {"perceptual_roughness", "0.9"}}});
     return out;
   }();
   return v;

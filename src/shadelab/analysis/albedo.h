@@ -21,7 +21,7 @@
 #include <optional>
 #include <vector>
 
-#include "shadelab/analysis/quadrature.h"
+#include "shadelab/numeric/quadrature.h"
 #include "shadelab/brdf/brdf.h"
 
 namespace shadelab {

@@ -12,10 +12,23 @@
 //   whose is_reciprocal() is false, the item passes when the measured error is > 1e-6 (non-reciprocal by
 //   design, and measurably so).
 // - pdf integral: max over the check angles of |integral of pdf over the sphere - 1| <= 1e-6.
-// - sample weights: max over the check angles of the relative differences between sample().pdf and pdf(),
-//   and between sample().weight and f cos / pdf, <= 1e-6; no non-finite values; weight 0 below the horizon.
+// - sample weights: an independent check of the sampler: the mean of consistency_samples weights must equal
+//   the directional albedo computed by quadrature (without sample()), |z| <= weight_mean_z = 5 in every
+//   channel at every check angle (weight_mean, chi_square.h; figure: the largest |z|); and, as before, the
+//   relative differences between sample().pdf and pdf() and between sample().weight and f cos / pdf must be
+//   <= 1e-6, with no non-finite values and weight 0 below the horizon.
+// - pdf integral: the tolerance is max(1e-6, 4 standard errors) when the mass below the horizon is sampled
+//   (pdf_smooth_below_horizon() false, chi_square.h).
 // - chi-square theta=X, one per check angle (default 0, 30, 60, 80 degrees): p-value of the sampler against
 //   the pdf >= the Sidak-corrected level 1 - (1 - alpha)^(1/k), alpha = 0.01, k = number of angles.
+// - furnace: the directional albedo at furnace_angles_deg (0..89 degrees) of the model's white-furnace
+//   variant (F = 1, no diffuse: f=none kd=0 ks=1 where the model has an f = none choice; filament:
+//   metallic=1 base_color=1), else of the model as given; figure: max |1 - albedo|. With energy compensation
+//   (ms=kulla-conty, energy_compensation=on) it must be <= furnace_tolerance = 1e-3; otherwise it is the
+//   energy loss, reported (threshold NaN).
+// - variance: the largest variance of the weight f cos / pdf over the check angles (consistency_samples
+//   samples each), reported; the detail lists it per angle and, for a model with a `sampling` parameter, for
+//   every sampler it offers.
 // All randomness uses fixed seeds. About one to a few seconds per model in a Release build.
 #pragma once
 
@@ -58,6 +71,9 @@ struct CheckOptions {
   double non_reciprocal_minimum = 1e-6;
   double weight_tolerance = 1e-6;
   double pdf_integral_tolerance = 1e-6;
+  double weight_mean_z = 5.0;
+  std::vector<double> furnace_angles_deg = {0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 85.0, 89.0};
+  double furnace_tolerance = 1e-3;
 };
 
 // Builds the model with make_brdf (errors name the model and parameter) and runs every check.

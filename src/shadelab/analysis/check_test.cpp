@@ -34,7 +34,8 @@ TEST(Check, LambertPassesEverything) {
   EXPECT_EQ(r->params, "kd=0.8");
   const std::vector<std::string> names = {"normalization",      "energy",           "reciprocity",
                                           "pdf integral",       "sample weights",   "chi-square theta=0",
-                                          "chi-square theta=30", "chi-square theta=60", "chi-square theta=80"};
+                                          "chi-square theta=30", "chi-square theta=60", "chi-square theta=80",
+                                          "furnace",            "variance"};
   ASSERT_EQ(r->items.size(), names.size());
   for (std::size_t i = 0; i < names.size(); ++i) EXPECT_EQ(r->items[i].name, names[i]);
   // No normalization parameter: the albedo at normal incidence is reported, with no threshold.
@@ -87,6 +88,14 @@ TEST(Check, BrokenModelsFail) {
   const CheckReport wrong_weight = check_brdf(*broken("lambert", {}, Broken::Fault::wrong_weight), quick());
   EXPECT_FALSE(item(wrong_weight, "sample weights").passed);
   EXPECT_TRUE(item(wrong_weight, "chi-square theta=0").passed);
+
+  // A sampler that draws from another distribution but reports a consistent pdf and weight for each sample
+  // (as LayeredBrdf does by construction): only the independent mean of the weights (and chi-square) see it.
+  const CheckReport resampled = check_brdf(*broken("phong-modified", {{"n", "20"}, {"kd", "0"}}, Broken::Fault::resampled), quick());
+  EXPECT_FALSE(item(resampled, "sample weights").passed) << item(resampled, "sample weights").detail;
+  EXPECT_GT(item(resampled, "sample weights").figure, 5.0);
+  const CheckReport fine = check_brdf(*testing::make("phong-modified", {{"n", "20"}, {"kd", "0"}}), quick());
+  EXPECT_TRUE(item(fine, "sample weights").passed) << item(fine, "sample weights").detail;
 
   const CheckReport below = check_brdf(*broken("phong", {{"n", "5"}}, Broken::Fault::weight_below_horizon), quick());
   EXPECT_FALSE(item(below, "sample weights").passed);

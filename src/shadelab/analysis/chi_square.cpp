@@ -159,6 +159,8 @@ double sidak_significance(double alpha, int tests) {
 ChiSquareResult chi_square_test(const Brdf& f, const Vec3& wo, const ChiSquareOptions& options) {
   ChiSquareResult r;
   r.rows = std::max(2, options.cos_theta_bins);
+  r.lower_pooled = !f.pdf_smooth_below_horizon();
+  if (r.lower_pooled) r.rows += r.rows % 2;  // the horizon must be a row boundary
   r.cols = std::max(1, options.phi_bins);
   const std::size_t cells = static_cast<std::size_t>(r.rows) * static_cast<std::size_t>(r.cols);
   r.observed.assign(cells, 0.0);
@@ -181,7 +183,8 @@ ChiSquareResult chi_square_test(const Brdf& f, const Vec3& wo, const ChiSquareOp
     r.observed[static_cast<std::size_t>(row) * r.cols + col] += 1.0;
   }
 
-  // Expected counts: N times the integral of the pdf over each cell, d(omega) = dz dphi.
+  // Expected counts: N times the integral of the pdf over each cell, d(omega) = dz dphi. With the lower
+  // hemisphere pooled, its cells are not integrated: together they expect N minus the upper cells' total.
   const double n = static_cast<double>(options.samples);
   QuadratureOptions q;
   q.rel_tol = options.cell_rel_tol;
@@ -191,7 +194,8 @@ ChiSquareResult chi_square_test(const Brdf& f, const Vec3& wo, const ChiSquareOp
   r.integration_converged = true;
   const double z_s = -wo.z;
   const double phi_s = azimuth(-wo);
-  for (int row = 0; row < r.rows; ++row) {
+  const int first_row = r.lower_pooled ? r.rows / 2 : 0;
+  for (int row = first_row; row < r.rows; ++row) {
     const double z0 = -1.0 + 2.0 * row / r.rows;
     const double z1 = -1.0 + 2.0 * (row + 1) / r.rows;
     for (int col = 0; col < r.cols; ++col) {
@@ -204,17 +208,30 @@ ChiSquareResult chi_square_test(const Brdf& f, const Vec3& wo, const ChiSquareOp
   }
   r.expected_total = std::accumulate(r.expected.begin(), r.expected.end(), 0.0);
 
-  // Pool cells in increasing order of expectation into groups of at least min_expected.
-  std::vector<std::size_t> order(cells);
+  // The bins of the test: every cell, or the upper cells and one bin for the whole lower hemisphere.
+  std::vector<std::pair<double, double>> bins;  // (observed, expected)
+  if (r.lower_pooled) {
+    const std::size_t lower_cells = static_cast<std::size_t>(first_row) * static_cast<std::size_t>(r.cols);
+    const double lower_observed = std::accumulate(r.observed.begin(), r.observed.begin() + static_cast<std::ptrdiff_t>(lower_cells), 0.0);
+    r.lower_expected = std::max(0.0, n - r.expected_total);
+    bins.emplace_back(lower_observed, r.lower_expected);
+    for (std::size_t k = lower_cells; k < cells; ++k) bins.emplace_back(r.observed[k], r.expected[k]);
+    r.expected_total += r.lower_expected;
+  } else {
+    for (std::size_t k = 0; k < cells; ++k) bins.emplace_back(r.observed[k], r.expected[k]);
+  }
+
+  // Pool bins in increasing order of expectation into groups of at least min_expected.
+  std::vector<std::size_t> order(bins.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.expected[a] < r.expected[b]; });
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bins[a].second < bins[b].second; });
   std::vector<std::pair<double, double>> groups;  // (observed, expected)
   double acc_o = 0.0;
   double acc_e = 0.0;
   int acc_cells = 0;
   for (std::size_t idx : order) {
-    const double e = r.expected[idx];
-    const double o = r.observed[idx];
+    const double e = bins[idx].second;
+    const double o = bins[idx].first;
     if (e <= 0.0) {
       if (o > 0.0) r.unexpected_samples += static_cast<std::uint64_t>(o);
       continue;
@@ -287,6 +304,48 @@ SampleConsistency sample_consistency(const Brdf& f, const Vec3& wo, std::uint64_
   return c;
 }
 
+double sampled_share_below_horizon(const Brdf& f, const Vec3& wo, std::uint64_t count, std::uint64_t seed) {
+  Pcg32 rng(seed, 0x62656c6f77ULL);
+  std::uint64_t below = 0;
+  for (std::uint64_t i = 0; i < count; ++i) {
+    const Vec2 u{rng.next_double(), rng.next_double()};
+    const double u_lobe = rng.next_double();
+    if (f.sample(wo, u, u_lobe).wi.z <= 0.0) ++below;
+  }
+  return count > 0 ? static_cast<double>(below) / static_cast<double>(count) : 0.0;
+}
+
+WeightMean weight_mean(const Brdf& f, const Vec3& wo, std::uint64_t count, std::uint64_t seed) {
+  WeightMean m;
+  m.samples = count;
+  m.albedo = directional_albedo(f, wo).albedo;
+  Pcg32 rng(seed, 0x6d65616eULL);
+  Rgb sum;
+  Rgb sum2;
+  for (std::uint64_t i = 0; i < count; ++i) {
+    const Vec2 u{rng.next_double(), rng.next_double()};
+    const double u_lobe = rng.next_double();
+    const Rgb w = f.sample(wo, u, u_lobe).weight;
+    if (!is_finite(w)) continue;  // counted by sample_consistency
+    sum += w;
+    sum2 += w * w;
+  }
+  const double n = static_cast<double>(std::max<std::uint64_t>(count, 1));
+  m.mean = sum / n;
+  double se_c[3];
+  for (int c = 0; c < 3; ++c) {
+    const double var = std::max(0.0, sum2[c] / n - m.mean[c] * m.mean[c]) * n / std::max(1.0, n - 1.0);
+    const double se = std::sqrt(var / n);
+    se_c[c] = se;
+    // The albedo's quadrature is accurate to ~1e-8 relative (albedo.h); that floor keeps a zero-variance
+    // weight (Lambert: every weight is kd) from turning rounding into a large z.
+    const double scale = std::sqrt(se * se + std::pow(1e-7 * std::abs(m.albedo[c]), 2.0)) + 1e-300;
+    m.max_z = std::max(m.max_z, std::abs(m.mean[c] - m.albedo[c]) / scale);
+  }
+  m.standard_error = {se_c[0], se_c[1], se_c[2]};
+  return m;
+}
+
 QuadratureResult pdf_integral(const Brdf& f, const Vec3& wo, const QuadratureOptions& options) {
   // The upper half about the pdf's peak there. The lower half about -wo, where every sampler that reflects
   // wo about a sampled half vector h has an integrable singularity (the Jacobian 1 / (4 |wo.h|) with wo.h -> 0),
@@ -297,6 +356,16 @@ QuadratureResult pdf_integral(const Brdf& f, const Vec3& wo, const QuadratureOpt
   // A peak search that climbed into the singularity stops near -wo but not on it; -wo itself is the centre.
   const bool genuine_lobe = f.pdf(lower_peak, wo) > 10.0 * f.pdf(near_antipode, wo) && dot(lower_peak, -wo) < std::cos(0.05);
   const Vec3 lower = genuine_lobe ? lower_peak : -wo;
+  if (!f.pdf_smooth_below_horizon()) {
+    // The upper half by quadrature; the mass below the horizon as the sampler's share of samples there, with
+    // its binomial standard error in the result's error.
+    const VectorQuadratureResult up = integrate_directions(
+        [&](const Vec3& wi, std::span<double> out) { out[0] = f.pdf(wi, wo); }, 1, upper.z > 0.0 ? upper : Vec3{0, 0, 1},
+        SphereRegion::upper, options);
+    const double share = sampled_share_below_horizon(f, wo, pdf_integral_lower_samples);
+    const double se = std::sqrt(share * (1.0 - share) / static_cast<double>(pdf_integral_lower_samples));
+    return {up.value[0] + share, up.error[0] + se, up.evaluations, up.subdivisions, up.converged};
+  }
   const VectorQuadratureResult q = integrate_sphere(
       [&](const Vec3& wi, std::span<double> out) { out[0] = f.pdf(wi, wo); }, 1, upper.z > 0.0 ? upper : Vec3{0, 0, 1},
       lower, options);

@@ -21,14 +21,23 @@
 //   and are counted, as are samples with pdf 0 (which are not compared).
 // - pdf_integral(f, wo) integrates f.pdf(wi, wo) over the sphere by quadrature (integrate_sphere): the upper
 //   half about the pdf's peak there, the lower half about -wo (where reflection samplers have an integrable
-//   1 / |wo.h| singularity) or about a lobe that peaks below the horizon. It should be 1.
+//   1 / |wo.h| singularity) or about a lobe that peaks below the horizon. It should be 1. For a model whose
+//   pdf_smooth_below_horizon() is false (brdf.h: a density that jumps across a curve below the horizon), the
+//   lower half is the sampler's share of pdf_integral_lower_samples samples below the horizon instead, and the
+//   result's error adds that share's binomial standard error.
+// - For such a model chi_square_test pools the whole lower hemisphere into one bin whose expected count is N
+//   minus the upper cells' (lower_pooled): the sampler's mass below the horizon is tested, not its shape
+//   there (those samples carry weight 0).
+// - weight_mean(f, wo, M): the mean and standard error of M sample weights against the directional albedo by
+//   quadrature (albedo.h): E[f cos / pdf] = albedo for an unbiased sampler, an expected value computed without
+//   sample(). max_z = max over channels of |mean - albedo| / sqrt(se^2 + (1e-7 albedo)^2).
 // Deterministic: the same inputs and seed give the same results. No printing.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include "shadelab/analysis/quadrature.h"
+#include "shadelab/numeric/quadrature.h"
 #include "shadelab/brdf/brdf.h"
 
 namespace shadelab {
@@ -56,6 +65,8 @@ struct ChiSquareResult {
   std::uint64_t invalid_samples = 0;     // non-finite direction
   std::uint64_t unexpected_samples = 0;  // landed in a cell with expected count 0
   double expected_total = 0.0;           // sum of the expected counts (N times the integral of the pdf)
+  bool lower_pooled = false;             // the lower hemisphere is one bin (pdf_smooth_below_horizon() false)
+  double lower_expected = 0.0;           // its expected count then
   int pooled_cells = 0;                  // cells that went into pooled groups
   bool integration_converged = false;
   int rows = 0;
@@ -79,6 +90,20 @@ struct SampleConsistency {
 };
 
 SampleConsistency sample_consistency(const Brdf& f, const Vec3& wo, std::uint64_t count, std::uint64_t seed = 0x5eed);
+
+struct WeightMean {
+  std::uint64_t samples = 0;
+  Rgb mean;            // of sample().weight
+  Rgb standard_error;  // of the mean
+  Rgb albedo;          // directional albedo by quadrature
+  double max_z = 0.0;
+};
+
+WeightMean weight_mean(const Brdf& f, const Vec3& wo, std::uint64_t count, std::uint64_t seed = 0x5eed);
+
+// The share of count samples of f.sample(wo, ...) that fall on or below the horizon.
+double sampled_share_below_horizon(const Brdf& f, const Vec3& wo, std::uint64_t count, std::uint64_t seed = 0x5eed);
+constexpr std::uint64_t pdf_integral_lower_samples = 1'000'000;
 
 // rel_tol 1e-9 by default.
 QuadratureResult pdf_integral(const Brdf& f, const Vec3& wo, const QuadratureOptions& options = [] {

@@ -59,6 +59,9 @@ bool known_to_conserve(const ParamSet& s, const ModelInfo& m) {
     return number("kd") == 0.0 && number("ks") <= 1.0 && value_of(s, m, "form") == "microfacet" &&
            value_of(s, m, "g") != "kelemen";
   }
+  // Single-scattering GGX with F <= 1 and no diffuse base (with ms = kulla-conty the albedo may exceed 1 by the
+  // tables' interpolation error, below 3e-4: asserted by the furnace tests, not here).
+  if (s.model == "ggx") return number("kd") == 0.0 && value_of(s, m, "ms") == "none";
   return false;
 }
 
@@ -83,11 +86,20 @@ std::vector<ParamSet> param_sets() {
       sharp.emplace_back("alpha", "0.03");
       rough.emplace_back("alpha", "0.6");
     }
-    if (has(m, "alpha_x") && has(m, "alpha_y")) {
+    if (has(m, "alpha_x") && has(m, "alpha_y") && !has(m, "alpha")) {
       sharp.emplace_back("alpha_x", "0.3");
       sharp.emplace_back("alpha_y", "0.02");
       rough.emplace_back("alpha_x", "0.05");
       rough.emplace_back("alpha_y", "0.7");
+    }
+    if (has(m, "roughness") && !has(m, "alpha")) {  // burley
+      sharp.emplace_back("roughness", "0");
+      rough.emplace_back("roughness", "1");
+    }
+    if (has(m, "perceptual_roughness")) {  // filament
+      sharp.emplace_back("metallic", "1");
+      sharp.emplace_back("perceptual_roughness", "0.1");
+      rough.emplace_back("perceptual_roughness", "1");
     }
     if (has(m, "w")) {
       sharp.emplace_back("w", "0");
@@ -104,6 +116,12 @@ std::vector<ParamSet> param_sets() {
       extra = {{"kd", "0"}, {"d", "blinn-phong"}, {"g", "cook-torrance"}, {"f", "dielectric"}, {"n", "100"}};
     }
     if (m.name == "lambert") extra = {{"kd", "1"}};
+    // GGX: anisotropic, with multiple scattering and a conductor; Filament: Burley diffuse, no compensation.
+    if (m.name == "ggx") {
+      extra = {{"kd", "0.1"}, {"alpha_x", "0.5"}, {"alpha_y", "0.05"}, {"f", "conductor"}, {"ior", "0.2,0.9,1.1"},
+               {"k", "3.9,2.4,2.2"}, {"ms", "kulla-conty"}, {"g", "smith-separable"}};
+    }
+    if (m.name == "filament") extra = {{"diffuse", "burley"}, {"energy_compensation", "off"}, {"metallic", "0.5"}};
     if (!sharp.empty()) mine.push_back({m.name, "sharp", sharp, false});
     if (!rough.empty()) mine.push_back({m.name, "rough", rough, false});
     if (!extra.empty()) mine.push_back({m.name, "extra", extra, false});
@@ -245,6 +263,10 @@ TEST_P(Models, ChiSquare) {
 
 TEST_P(Models, SampleWeightIsFCosOverPdf) {
   for (double t : check_angles) {
+    // Independent of sample(): the mean weight is the directional albedo by quadrature (5 standard errors).
+    const WeightMean m = weight_mean(brdf(), view(t), 100'000);
+    EXPECT_LE(m.max_z, 5.0) << name() << " theta_o " << t << ": mean weight " << m.mean.r << ", " << m.mean.g << ", "
+                            << m.mean.b << " vs albedo " << m.albedo.r << ", " << m.albedo.g << ", " << m.albedo.b;
     const SampleConsistency c = sample_consistency(brdf(), view(t), 100'000);
     EXPECT_LE(c.max_pdf_error, 1e-6) << name() << " theta_o " << t;
     EXPECT_LE(c.max_weight_error, 1e-6) << name() << " theta_o " << t;
@@ -257,7 +279,8 @@ TEST_P(Models, SampleWeightIsFCosOverPdf) {
 TEST_P(Models, PdfIntegratesToOne) {
   for (double t : check_angles) {
     const QuadratureResult q = pdf_integral(brdf(), view(t));
-    EXPECT_NEAR(q.value, 1.0, 1e-6) << name() << " theta_o " << t;
+    // With the mass below the horizon sampled (pdf_smooth_below_horizon() false), 4 standard errors.
+    EXPECT_NEAR(q.value, 1.0, std::max(1e-6, 4.0 * q.error)) << name() << " theta_o " << t;
   }
 }
 

@@ -39,6 +39,8 @@ class Broken final : public Brdf {
     samples_below,        // every 10th sampled direction is mirrored below the horizon, where pdf() is 0
     claims_non_reciprocal,
     non_reciprocal,       // f(wi, wo) scaled by (1 + wi.z), which breaks symmetry
+    resampled,            // draws wi with u.x squared but reports pdf() and f cos / pdf for it: consistent
+                          // per sample (as LayeredBrdf is by construction), biased on average
   };
   Broken(BrdfPtr inner, Fault fault) : m_inner(std::move(inner)), m_fault(fault) {}
 
@@ -63,6 +65,11 @@ class Broken final : public Brdf {
         break;
       case Fault::samples_below:
         if (static_cast<int>(u.x * 1e6) % 10 == 0) s.wi.z = -s.wi.z;
+        break;
+      case Fault::resampled:
+        s = m_inner->sample(wo, {u.x * u.x, u.y}, u_lobe);
+        s.pdf = m_inner->pdf(s.wi, wo);
+        s.weight = s.pdf > 0.0 && s.wi.z > 0.0 ? m_inner->eval(s.wi, wo) * (s.wi.z / s.pdf) : Rgb{};
         break;
       default: break;
     }

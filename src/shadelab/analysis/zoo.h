@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-#include "shadelab/analysis/quadrature.h"
+#include "shadelab/numeric/quadrature.h"
 #include "shadelab/core/error.h"
 
 namespace shadelab {

@@ -96,6 +96,12 @@ class Brdf {
   // (the original Phong and Blinn-Phong, which divide by N.L; wrapped diffuse with w > 0).
   virtual bool is_reciprocal() const { return true; }
 
+  // False when the sampler's density jumps across a curve below the horizon (the support edge of the visible-
+  // normal samplers, the cut of the bounded one), which quadrature over the sphere cannot resolve. The
+  // analysis then integrates the density over the upper hemisphere only and checks the mass below the horizon
+  // against the sampler's share of samples there (analysis/chi_square.h). Samples below carry weight 0.
+  virtual bool pdf_smooth_below_horizon() const { return true; }
+
   // The albedo of the model's Lambertian (view-independent) part, pi times its constant f: what a game
   // multiplies by diffuse irradiance / pi. Black for a model without one.
   virtual Rgb diffuse_albedo() const { return {}; }

@@ -13,7 +13,8 @@ namespace shadelab {
 namespace {
 
 // The enums' order is the kernel's COOK_TORRANCE_* numbering.
-static_assert(static_cast<int>(CookTorrance::Distribution::blinn_phong) == kernel::COOK_TORRANCE_D_BLINN_PHONG);
+static_assert(static_cast<int>(CookTorrance::Distribution::blinn_phong) == kernel::COOK_TORRANCE_D_BLINN_PHONG &&
+              static_cast<int>(CookTorrance::Distribution::ggx) == kernel::COOK_TORRANCE_D_GGX);
 static_assert(static_cast<int>(CookTorrance::Geometry::smith) == kernel::COOK_TORRANCE_G_SMITH &&
               static_cast<int>(CookTorrance::Geometry::kelemen) == kernel::COOK_TORRANCE_G_KELEMEN);
 static_assert(static_cast<int>(CookTorrance::FresnelKind::none) == kernel::COOK_TORRANCE_F_NONE &&
@@ -69,6 +70,7 @@ double CookTorrance::specular_pdf(const Vec3& wi, const Vec3& wo) const {
 
 Vec3 CookTorrance::specular_sample(const Vec3& wo, Vec2 u, double) const {
   // Blinn-Phong D cos = (n+2)/(2pi) cos^(n+1): a power-cosine lobe of exponent n + 1.
+  if (m_p.d == Distribution::ggx) return reflect(wo, sample_ggx_ndf(u, m_p.m, m_p.m));
   const Vec3 h = m_p.d == Distribution::beckmann ? sample_beckmann_h(u, m_p.m) : sample_power_cosine(u, m_p.n + 1.0);
   return reflect(wo, h);
 }
@@ -95,7 +97,7 @@ ModelInfo cook_torrance_model() {
       ks_param("1"),
       {"m", ParamKind::scalar, "0.3", 1e-4, 10.0, {}, "Beckmann RMS slope (give m or n, not both)", 0, {}},
       {"n", ParamKind::scalar, "20.2222222222", 0.0, 1e6, {}, "Blinn-Phong exponent, n = 2/m^2 - 2", 0, {}},
-      {"d", ParamKind::choice, "beckmann", 0, 0, {"beckmann", "blinn-phong"}, "normal distribution", 0, {}},
+      {"d", ParamKind::choice, "beckmann", 0, 0, {"beckmann", "blinn-phong", "ggx"}, "normal distribution (ggx: alpha = m)", 0, {}},
       {"g", ParamKind::choice, "smith", 0, 0, {"cook-torrance", "kelemen", "smith"}, "masking-shadowing", 0, {}},
       {"f", ParamKind::choice, "schlick", 0, 0, {"dielectric", "conductor", "schlick", "none"}, "Fresnel term", 0, {}},
       {"ior", ParamKind::color, "1.5", 1e-3, 100.0, {}, "real part of the relative IOR (dielectric, conductor)", 0, {}},
@@ -122,7 +124,8 @@ ModelInfo cook_torrance_model() {
       }
     }
     q.d = pick<CookTorrance::Distribution>(p.choice("d"), {{"beckmann", CookTorrance::Distribution::beckmann},
-                                                           {"blinn-phong", CookTorrance::Distribution::blinn_phong}});
+                                                           {"blinn-phong", CookTorrance::Distribution::blinn_phong},
+                                                           {"ggx", CookTorrance::Distribution::ggx}});
     q.g = pick<CookTorrance::Geometry>(p.choice("g"), {{"smith", CookTorrance::Geometry::smith},
                                                        {"cook-torrance", CookTorrance::Geometry::cook_torrance},
                                                        {"kelemen", CookTorrance::Geometry::kelemen}});

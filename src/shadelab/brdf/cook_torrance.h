@@ -6,12 +6,14 @@
 //                      Computer Graphics", ACM TOG 1982 / SIGGRAPH 1981, eq. 4; lecture 5 "Cook-Torrance").
 // Since D_1981 = pi D, the 1981 form is exactly 4 times the microfacet form (docs/models/cook-torrance.md).
 //
-// d = beckmann (roughness m) | blinn-phong (exponent n, heightfield normalization (n+2)/(2pi)); m and n are
-// converted by n = 2/m^2 - 2 when the other is given. g = cook-torrance (the min(1, ...) term) | kelemen
+// d = beckmann (roughness m) | blinn-phong (exponent n, heightfield normalization (n+2)/(2pi)) | ggx (GGX with
+// alpha = m, Walter et al. 2007 eq. 33, so the 1981 form can be compared term by term with ggx); m and n are
+// converted by n = 2/m^2 - 2 when the other is given. With d = ggx, g = smith is GGX's height-correlated Smith. g = cook-torrance (the min(1, ...) term) | kelemen
 // (G/(N.L N.V) ~ 1/(L.H)^2) | smith (height-correlated Smith for Beckmann). f = dielectric (ior) |
 // conductor (ior, k) | schlick (f0) | none (F = 1). F is evaluated at L.H.
 // eval is the kernel kernels/cook_torrance.sl (the text shaders also use).
-// Sampling: H with density D(h) cos(theta_h), L = reflect(V, H), pdf = D cos(theta_h) / (4 V.H).
+// Sampling: H with density D(h) cos(theta_h) (for GGX, microfacet.h's sample_ggx_ndf), L = reflect(V, H),
+// pdf = D cos(theta_h) / (4 V.H).
 #pragma once
 
 #include "shadelab/brdf/layered.h"
@@ -21,7 +23,7 @@ namespace shadelab {
 
 class CookTorrance final : public LayeredBrdf {
  public:
-  enum class Distribution { beckmann, blinn_phong };
+  enum class Distribution { beckmann, blinn_phong, ggx };
   enum class Geometry { cook_torrance, kelemen, smith };
   enum class FresnelKind { dielectric, conductor, schlick, none };
   enum class Form { microfacet, cook_torrance_1981 };

@@ -15,6 +15,9 @@ std::span<const ModelInfo> brdf_models() {
       ward_anisotropic_model(),
       lafortune_model(),
       wrapped_diffuse_model(),
+      ggx_model(),
+      burley_model(),
+      filament_model(),
   };
   return models;
 }

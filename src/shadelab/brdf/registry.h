@@ -48,5 +48,8 @@ ModelInfo ward_model();
 ModelInfo ward_anisotropic_model();
 ModelInfo lafortune_model();
 ModelInfo wrapped_diffuse_model();
+ModelInfo ggx_model();
+ModelInfo burley_model();
+ModelInfo filament_model();
 
 }  // namespace shadelab

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string>
 
+#include "shadelab/envmap/texel_format.h"
 #include "shadelab/image/image_io.h"
 
 namespace shadelab {
@@ -36,12 +37,6 @@ std::uint32_t get_u32(const std::vector<char>& in, std::size_t offset) {
   return v;
 }
 
-template <typename T>
-void put(std::vector<char>& out, T v) {
-  char b[sizeof(T)];
-  std::memcpy(b, &v, sizeof(T));
-  out.insert(out.end(), b, b + sizeof(T));
-}
 
 }  // namespace
 
@@ -72,25 +67,14 @@ Result<std::vector<char>> encode_ktx_cubemap(const std::vector<CubeMap>& levels,
   put_u32(out, 6);                                   // numberOfFaces
   put_u32(out, static_cast<std::uint32_t>(levels.size()));  // numberOfMipmapLevels
   put_u32(out, 0);                                   // bytesOfKeyValueData
+  TexelEncodeInfo encoded;
   for (const CubeMap& level : levels) {
     const auto n = static_cast<std::uint32_t>(level.size);
     put_u32(out, n * n * 4 * bytes_per_channel);  // imageSize: one face of a non-array cube map
-    for (const Image& face : level.faces) {
-      for (std::size_t p = 0; p < face.pixel_count(); ++p) {
-        for (int c = 0; c < 4; ++c) {
-          const float v = c < 3 ? face.data[3 * p + static_cast<std::size_t>(c)] : 1.0f;
-          if (half) {
-            // Clamp finite values to the half range (Imath::half would round them to +-inf).
-            const float clamped_v = std::isfinite(v) ? std::clamp(v, -ktx_half_max, ktx_half_max) : v;
-            clamped += std::isfinite(v) && clamped_v != v ? 1 : 0;
-            put(out, Imath::half(clamped_v).bits());
-          } else {
-            put(out, v);
-          }
-        }
-      }
-    }
+    // RGBA16F / RGBA32F texels, alpha 1, half values clamped to +-65504 (texel_format.h, shared with KTX 2 / DDS).
+    for (const Image& face : level.faces) append_texels(out, face, half ? TexelFormat::rgba16f : TexelFormat::rgba32f, &encoded);
   }
+  clamped = encoded.clamped_values;
   if (info != nullptr) info->clamped_values = clamped;
   return out;
 }

@@ -1,11 +1,13 @@
 // cook-torrance: a microfacet specular lobe over a Lambertian base, f_r = kd/pi + ks F D G / (c (N.L)(N.V)).
 //   form microfacet: c = 4 and D normalized (Walter et al., "Microfacet Models for Refraction", EGSR 2007, eq. 20)
 //   form 1981:       c = pi and the paper's D without the 1/pi (Cook & Torrance 1981 eq. 4), i.e. 4x microfacet
-// d: beckmann (m) | blinn-phong (n); g: cook-torrance | kelemen | smith (height-correlated, Beckmann);
+// d: beckmann (m) | blinn-phong (n) | ggx (alpha = m); g: cook-torrance | kelemen | smith (height-correlated,
+// for Beckmann's D or, with d = ggx, for GGX's: Heitz 2014 eq. 99);
 // f: dielectric (ior) | conductor (ior, k) | schlick (f0) | none. F is evaluated at L.H.
 
 const int COOK_TORRANCE_D_BECKMANN = 0;
 const int COOK_TORRANCE_D_BLINN_PHONG = 1;
+const int COOK_TORRANCE_D_GGX = 2;
 const int COOK_TORRANCE_G_COOK_TORRANCE = 0;
 const int COOK_TORRANCE_G_KELEMEN = 1;
 const int COOK_TORRANCE_G_SMITH = 2;
@@ -19,7 +21,7 @@ const int COOK_TORRANCE_FORM_1981 = 1;
 struct CookTorranceParams {
   rgb kd;
   rgb ks;
-  real m;  // Beckmann RMS slope (d beckmann; and the Smith term)
+  real m;  // Beckmann RMS slope (d beckmann; and the Smith term), or GGX alpha (d ggx)
   real n;  // Blinn-Phong exponent (d blinn-phong), n = 2/m^2 - 2
   int d;   // COOK_TORRANCE_D_*
   int g;   // COOK_TORRANCE_G_*
@@ -50,6 +52,7 @@ inline rgb cook_torrance_fresnel(CookTorranceParams p, real cos_i) {
 }
 
 inline real cook_torrance_distribution(CookTorranceParams p, real cos_h) {
+  if (p.d == COOK_TORRANCE_D_GGX) return D_ggx(cos_h, p.m);
   return p.d == COOK_TORRANCE_D_BECKMANN ? D_beckmann(cos_h, p.m) : D_blinn_phong(cos_h, p.n);
 }
 
@@ -70,6 +73,8 @@ inline rgb cook_torrance_eval(CookTorranceState s, vec3 wi, vec3 wo) {
     v = G_cook_torrance(nh, nv, nl, lh) / (4.0 * nl * nv);
   } else if (s.p.g == COOK_TORRANCE_G_KELEMEN) {
     v = V_kelemen(lh);
+  } else if (s.p.d == COOK_TORRANCE_D_GGX) {
+    v = G2_ggx_correlated(wi, wo, s.p.m, s.p.m) / (4.0 * nl * nv);
   } else {
     v = G_smith_beckmann(nl, nv, s.p.m) / (4.0 * nl * nv);
   }

@@ -47,3 +47,57 @@ inline real lambda_beckmann(real cos_theta, real m) {
 inline real G_smith_beckmann(real cos_i, real cos_o, real m) {
   return 1.0 / (1.0 + lambda_beckmann(cos_i, m) + lambda_beckmann(cos_o, m));
 }
+
+// GGX (Trowbridge-Reitz), anisotropic: D(h) = 1 / (pi ax ay (hx^2/ax^2 + hy^2/ay^2 + hz^2)^2) for h.z > 0
+// (Trowbridge & Reitz 1975; Walter et al. 2007 eq. 33 for ax = ay; Heitz 2014, "Understanding the
+// Masking-Shadowing Function", eq. 85). h is the unit half vector in the local frame (tangent +X).
+inline real D_ggx_aniso(vec3 h, real ax, real ay) {
+  if (h.z <= 0.0) return 0.0;
+  real x = h.x / ax;
+  real y = h.y / ay;
+  real s = x * x + y * y + h.z * h.z;
+  return 1.0 / (SL_PI * ax * ay * s * s);
+}
+
+// GGX, isotropic: alpha^2 / (pi ((alpha^2 - 1) cos^2(theta_h) + 1)^2) (Walter et al. 2007 eq. 33, written
+// as in Filament's documentation, "Specular D": D_GGX).
+inline real D_ggx(real cos_h, real alpha) {
+  if (cos_h <= 0.0) return 0.0;
+  real a2 = alpha * alpha;
+  real d = (a2 - 1.0) * cos_h * cos_h + 1.0;
+  return a2 / (SL_PI * d * d);
+}
+
+// Smith's Lambda for GGX: (-1 + sqrt(1 + a^-2)) / 2 with a^-2 = (ax^2 wx^2 + ay^2 wy^2) / wz^2 (Heitz 2014
+// eq. 86 and, for the anisotropic roughness projected on w's azimuth, eq. 80). Written t / (2 (1 + sqrt(1 + t)))
+// (the same number without the cancellation of sqrt(1 + t) - 1 for small t). For w.z > 0.
+inline real lambda_ggx(vec3 w, real ax, real ay) {
+  real t = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / (w.z * w.z);
+  return 0.5 * t / (1.0 + sqrt(1.0 + t));
+}
+
+// Smith masking G1(w) = 1 / (1 + Lambda(w)) (Heitz 2014 eq. 43).
+inline real G1_ggx(vec3 w, real ax, real ay) {
+  return 1.0 / (1.0 + lambda_ggx(w, ax, ay));
+}
+
+// Height-correlated Smith masking-shadowing for reflection: 1 / (1 + Lambda(wi) + Lambda(wo)) (Heitz 2014
+// eq. 99). The sum is formed first, so G2(wi, wo) == G2(wo, wi) exactly.
+inline real G2_ggx_correlated(vec3 wi, vec3 wo, real ax, real ay) {
+  return 1.0 / (1.0 + (lambda_ggx(wi, ax, ay) + lambda_ggx(wo, ax, ay)));
+}
+
+// Separable Smith masking-shadowing: G1(wi) G1(wo) (Heitz 2014 eq. 98; Walter et al. 2007 eq. 23).
+inline real G2_ggx_separable(vec3 wi, vec3 wo, real ax, real ay) {
+  return G1_ggx(wi, ax, ay) * G1_ggx(wo, ax, ay);
+}
+
+// The height-correlated Smith-GGX visibility V = G2 / (4 N.L N.V) in the form Filament's documentation
+// gives ("Geometric shadowing", V_SmithGGXCorrelated): 0.5 / (N.L sqrt(N.V^2 (1 - a^2) + a^2) +
+// N.V sqrt(N.L^2 (1 - a^2) + a^2)); isotropic, nl and nv > 0. Tested equal to G2_ggx_correlated / (4 nl nv).
+inline real V_smith_ggx_correlated(real nv, real nl, real alpha) {
+  real a2 = alpha * alpha;
+  real lv = nl * sqrt(nv * nv * (1.0 - a2) + a2);
+  real ll = nv * sqrt(nl * nl * (1.0 - a2) + a2);
+  return 0.5 / (lv + ll);
+}

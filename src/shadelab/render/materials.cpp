@@ -30,6 +30,8 @@ Result<bool> MaterialSet::prepare(const Scene& scene) {
       if (m.gloss_texture >= 0 && !has("n")) return make_error("material '" + m.name + "': model '" + m.model + "' has no exponent n for its gloss texture");
       rt.ks_is_f0 = m.model == "cook-torrance" && rt.base->choice("f") == "schlick";
       if (m.ks_texture >= 0 && !rt.ks_is_f0 && !has("ks")) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameter ks for its ks texture");
+      if (m.base_color_texture >= 0 && !has("base_color")) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameter base_color for its base_color texture");
+      if (m.metallic_roughness_texture >= 0 && !(has("metallic") && has("perceptual_roughness"))) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameters metallic and perceptual_roughness for its metallic_roughness texture");
     } else if (m.brdf) {
       rt.brdf = m.brdf;
     }
@@ -67,6 +69,18 @@ const Brdf* MaterialSet::brdf(int material, Vec2 uv, BrdfPtr& holder) const {
   if (m.gloss_texture >= 0) {
     const double g = sample_texture(m_scene->textures[static_cast<std::size_t>(m.gloss_texture)], uv).r;
     v.set_numbers("n", {m.gloss_encoding.exponent_from_gloss(g)});  // the zoo's logarithmic gloss encoding
+  }
+  // glTF metallic-roughness: the textures multiply the material's factors (glTF 2.0, section 3.9.2).
+  if (m.base_color_texture >= 0) {
+    const Rgb c = sample_texture(m_scene->textures[static_cast<std::size_t>(m.base_color_texture)], uv);
+    const Rgb f = rt.base->color("base_color");
+    v.set_numbers("base_color", {f.r * c.r, f.g * c.g, f.b * c.b});
+  }
+  if (m.metallic_roughness_texture >= 0) {
+    const Rgb t = sample_texture(m_scene->textures[static_cast<std::size_t>(m.metallic_roughness_texture)], uv);
+    v.set_numbers("metallic", {std::clamp(rt.base->scalar("metallic") * t.b, 0.0, 1.0)});
+    // perceptual_roughness' range starts at 0.01 (filament.cpp): a black texel is the smoothest it allows.
+    v.set_numbers("perceptual_roughness", {std::clamp(rt.base->scalar("perceptual_roughness") * t.g, 0.01, 1.0)});
   }
   auto b = rt.info->create(v);
   if (!b) return rt.brdf.get();  // validated at load; a texture cannot make it fail

@@ -58,10 +58,17 @@ struct Material {
   int ks_texture = -1;      // specular reflectance F0 (data) -> parameter ks (or f0 for cook-torrance)
   int gloss_texture = -1;   // gloss map (data, red channel): exponent n by the zoo's logarithmic encoding
   int normal_texture = -1;  // tangent-space normal map (data, [0,1] -> [-1,1])
+  // glTF's metallic-roughness textures (models with base_color / metallic / perceptual_roughness: filament):
+  // they multiply the parameters, as glTF's factors and textures do.
+  int base_color_texture = -1;          // colour (sRGB) x parameter base_color
+  int metallic_roughness_texture = -1;  // data: green x perceptual_roughness, blue x metallic
   GlossEncoding gloss_encoding;
   Vec2 uv_scale{1.0, 1.0};  // texture lookups use (u * uv_scale.x, v * uv_scale.y): tiling
   Rgb emission;             // emitted radiance, W m^-2 sr^-1 (emissive shapes)
-  bool textured() const { return kd_texture >= 0 || ks_texture >= 0 || gloss_texture >= 0; }
+  bool textured() const {
+    return kd_texture >= 0 || ks_texture >= 0 || gloss_texture >= 0 || base_color_texture >= 0 ||
+           metallic_roughness_texture >= 0;
+  }
 };
 
 struct SphereShape {

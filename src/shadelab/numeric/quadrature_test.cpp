@@ -1,4 +1,4 @@
-#include "shadelab/analysis/quadrature.h"
+#include "shadelab/numeric/quadrature.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,68 @@
+// shadelab DFG table: the split-sum environment BRDF of the height-correlated Smith GGX model, as engines
+// load it next to a prefiltered specular cube (Karis 2013, "Real Shading in Unreal Engine 4", eqs. 4-8;
+// Filament's documentation, "Pre-integrated DFG"; multiple-scattering use: Turquin 2019, "Practical
+// multiple scattering compensation for microfacet models"; Filament, "Energy compensation").
+//
+// For a view direction v at N.V = mu and GGX roughness alpha = r^2 (r the perceptual roughness), with
+// Schlick's F = F0 + (1 - F0) Fc, Fc = (1 - V.H)^5:
+//   integral f_spec(v, l) N.L dl = F0 A + B,
+//   A = integral (1 - Fc) D G2 / (4 N.V) dl,   B = integral Fc D G2 / (4 N.V) dl,
+// and A + B = E_ss(mu, alpha), the single-scattering albedo with F = 1 (what Filament/Turquin compensation
+// divides by). D is GGX (microfacet.sl D_ggx), G2 the height-correlated Smith term (microfacet.sl).
+//
+// Contract:
+// - Texel (i, j) of a size x size table holds x = N.V = (i + 0.5) / size (column i, left to right) and
+//   y = r = (j + 0.5) / size (row j; row 0, the first row in memory, is the smallest roughness: uploaded
+//   row by row as a GL/Vulkan texture, texture coordinates (N.V, r) address it directly; in an image viewer
+//   that row is at the top).
+// - Channels: 0 = A (scale of F0), 1 = B (bias), 2 = A + B (the albedo E_ss) when multiscatter, else 0.
+// - Method quadrature (default): per texel, an adaptive Gauss-Kronrod double integral (numeric/quadrature.h)
+//   over the half vector, in Walter et al. 2007's GGX sampling variable xi (D cos(theta_h) d(omega_h) =
+//   d(xi) d(phi) / (2 pi)) and azimuth phi, with the horizon N.L = 0 an exact integration bound; every
+//   texel's estimated absolute error is reported and below `tolerance`. Method sampling (samples > 0): the
+//   engines' way, `samples` Hammersley points per texel importance-sampled from D (Karis 2013's
+//   IntegrateBRDF), deterministic; its error is what it is (the CLI reports it against the quadrature).
+// - Same options, same bits, any thread count. size in [1, 4096], samples in [0, 2^24].
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace shadelab {
+
+struct DfgOptions {
+  int size = 128;
+  bool multiscatter = false;
+  int samples = 0;             // 0: adaptive quadrature; > 0: Hammersley importance sampling
+  double tolerance = 1e-6;     // absolute error per texel and channel (quadrature)
+};
+
+struct DfgTable {
+  int size = 0;
+  bool multiscatter = false;
+  std::vector<double> texels;       // size * size * 3, row-major (row = roughness), channels A, B, A + B | 0
+  double max_error_estimate = 0.0;  // quadrature: the largest per-texel error estimate; sampling: 0 (unknown)
+  std::int64_t evaluations = 0;     // integrand evaluations (quadrature) or samples (sampling), in total
+
+  double at(int i, int j, int c) const {
+    return texels[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * 3 +
+                  static_cast<std::size_t>(c)];
+  }
+};
+
+// A and B at one (mu, alpha) by the quadrature described above; error_out receives the larger of the two
+// error estimates, evaluations_out the integrand calls. mu in (0, 1], alpha > 0.
+struct DfgValue {
+  double a = 0.0;
+  double b = 0.0;
+  double error = 0.0;
+  std::int64_t evaluations = 0;
+};
+DfgValue dfg_quadrature(double mu, double alpha, double tolerance = 1e-6);
+// The same by `samples` Hammersley points importance-sampled from D cos(theta_h).
+DfgValue dfg_sampled(double mu, double alpha, int samples);
+
+// Throws std::invalid_argument naming the option when size or samples is out of range or tolerance <= 0.
+DfgTable bake_dfg(const DfgOptions& options);
+
+}  // namespace shadelab

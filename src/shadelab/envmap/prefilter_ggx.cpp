@@ -1,0 +1,231 @@
+// shadelab prefiltered GGX cube mip chain (prefilter_ggx.h): filtered importance sampling of the split-sum lobe.
+#include "shadelab/envmap/prefilter_ggx.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "shadelab/core/constants.h"
+#include "shadelab/core/frame.h"
+#include "shadelab/kernels/kernels.h"
+
+namespace shadelab {
+
+double GgxMipMapping::roughness(int level) const {
+  if (levels <= 1) return 0.0;
+  const double t = static_cast<double>(level) / (levels - 1);
+  switch (kind) {
+    case GgxRoughnessMapping::filament: return 1.0 - std::sqrt(std::max(0.0, 1.0 - t));  // inverse of t = r (2 - r)
+    default: return t;  // t = r
+  }
+}
+
+double GgxMipMapping::lod(double r) const {
+  const double scale = levels > 1 ? levels - 1.0 : 0.0;
+  switch (kind) {
+    case GgxRoughnessMapping::filament: return scale * r * (2.0 - r);
+    default: return scale * r;
+  }
+}
+
+const char* GgxMipMapping::name() const { return kind == GgxRoughnessMapping::filament ? "filament" : "linear"; }
+
+std::string GgxMipMapping::formula() const {
+  const std::string l = std::to_string(levels > 1 ? levels - 1 : 0);
+  return kind == GgxRoughnessMapping::filament ? "lod = r * (2 - r) * " + l : "lod = r * " + l;
+}
+
+GgxRoughnessMapping parse_ggx_roughness_mapping(const std::string& name) {
+  if (name == "linear") return GgxRoughnessMapping::linear;
+  if (name == "filament") return GgxRoughnessMapping::filament;
+  throw std::invalid_argument("mapping: unknown roughness-to-mip mapping '" + name + "' (linear, filament)");
+}
+
+Rgb prefilter_ggx_brute_force(const CubeMap& radiance, const Vec3& r, double roughness) {
+  const CubeTexelTable& t = CubeTexelTable::get(radiance.size);
+  const auto n2 = static_cast<std::size_t>(radiance.size) * static_cast<std::size_t>(radiance.size);
+  const double alpha = roughness * roughness;
+  Rgb sum;
+  double weight = 0.0;
+  for (std::size_t k = 0; k < t.direction.size(); ++k) {
+    const Vec3& l = t.direction[k];
+    const double rl = dot(r, l);
+    if (rl <= 0.0) continue;
+    const Vec3 h = normalize(r + l);
+    const double w = kernel::D_ggx(dot(r, h), alpha) * rl * t.solid_angle[k];  // D(h) max(R.l, 0) dOmega
+    const std::size_t p = k % n2;
+    const auto size = static_cast<std::size_t>(radiance.size);
+    sum += radiance.faces[k / n2].at(static_cast<int>(p % size), static_cast<int>(p / size)) * w;
+    weight += w;
+  }
+  return weight > 0.0 ? sum / weight : Rgb{};
+}
+
+namespace {
+
+// Texel (x, y) of a face, where x or y may be one texel outside [0, N): such a tap reads the texel of the
+// neighbouring face that the direction of its (extended-plane) centre falls in; past a corner, the mean of
+// the three texels that meet there.
+Rgb texel_across_edges(const CubeMap& c, int face, int x, int y) {
+  const int n = c.size;
+  const bool x_in = x >= 0 && x < n;
+  const bool y_in = y >= 0 && y < n;
+  if (x_in && y_in) return c.texel(face, x, y);
+  const auto neighbour = [&](int xx, int yy) {
+    const CubeCoord q = cube_coord(cube_direction(face, (xx + 0.5) / n, (yy + 0.5) / n));
+    const int qx = std::clamp(static_cast<int>(q.s * n), 0, n - 1);
+    const int qy = std::clamp(static_cast<int>(q.t * n), 0, n - 1);
+    return c.texel(q.face, qx, qy);
+  };
+  if (x_in || y_in) return neighbour(x, y);
+  const int cx = std::clamp(x, 0, n - 1);
+  const int cy = std::clamp(y, 0, n - 1);
+  return (c.texel(face, cx, cy) + neighbour(x, cy) + neighbour(cx, y)) / 3.0;
+}
+
+}  // namespace
+
+Rgb sample_cube_seamless(const CubeMap& cube, const Vec3& dir) {
+  const CubeCoord c = cube_coord(dir);
+  const int n = cube.size;
+  const double fx = c.s * n - 0.5;  // texel centres at integer fx
+  const double fy = c.t * n - 0.5;
+  const int x0 = std::clamp(static_cast<int>(std::floor(fx)), -1, n - 1);
+  const int y0 = std::clamp(static_cast<int>(std::floor(fy)), -1, n - 1);
+  const double ax = std::clamp(fx - x0, 0.0, 1.0);
+  const double ay = std::clamp(fy - y0, 0.0, 1.0);
+  return (texel_across_edges(cube, c.face, x0, y0) * (1 - ax) + texel_across_edges(cube, c.face, x0 + 1, y0) * ax) *
+             (1 - ay) +
+         (texel_across_edges(cube, c.face, x0, y0 + 1) * (1 - ax) + texel_across_edges(cube, c.face, x0 + 1, y0 + 1) * ax) *
+             ay;
+}
+
+namespace {
+
+// Van der Corput radical inverse in base 2 (the second Hammersley coordinate).
+double radical_inverse(std::uint32_t i) {
+  i = (i << 16) | (i >> 16);
+  i = ((i & 0x55555555u) << 1) | ((i & 0xAAAAAAAAu) >> 1);
+  i = ((i & 0x33333333u) << 2) | ((i & 0xCCCCCCCCu) >> 2);
+  i = ((i & 0x0F0F0F0Fu) << 4) | ((i & 0xF0F0F0F0u) >> 4);
+  i = ((i & 0x00FF00FFu) << 8) | ((i & 0xFF00FF00u) >> 8);
+  return static_cast<double>(i) * 0x1p-32;
+}
+
+}  // namespace
+
+GgxFilter::GgxFilter(const CubeMap& radiance, int samples, double lod_bias)
+    : pyramid_{radiance}, samples_(samples), lod_bias_(lod_bias) {
+  while (pyramid_.back().size > 1 && pyramid_.back().size % 2 == 0) pyramid_.push_back(downsample_cube(pyramid_.back()));
+}
+
+// The fixed sample set of one roughness: l = reflect(-R, h) for Hammersley h drawn from D(h) (n.h), kept where
+// R.l > 0.
+std::vector<GgxFilter::Sample> GgxFilter::make_samples(double roughness) const {
+  const double alpha = roughness * roughness;
+  const int count = samples_;
+  const int input_size = pyramid_.front().size;
+  const double max_lod = static_cast<double>(pyramid_.size() - 1);
+  std::vector<Sample> out;
+  out.reserve(static_cast<std::size_t>(count));
+  const double omega_p = 4.0 * pi / (6.0 * input_size * input_size);  // mean input texel solid angle
+  for (int k = 0; k < count; ++k) {
+    const double u = (k + 0.5) / count;
+    const double phi = two_pi * radical_inverse(static_cast<std::uint32_t>(k));
+    // GGX sampling of h (Walter et al. 2007 eq. 35-36): cos^2(theta_h) = (1 - u) / (1 + (alpha^2 - 1) u).
+    const double c2 = (1.0 - u) / (1.0 + (alpha * alpha - 1.0) * u);
+    const double ch = std::sqrt(c2);
+    const double sh = std::sqrt(std::max(0.0, 1.0 - c2));
+    const Vec3 h{sh * std::cos(phi), sh * std::sin(phi), ch};
+    const Vec3 l = 2.0 * ch * h - Vec3{0.0, 0.0, 1.0};  // reflect(-R, h) with R = +Z
+    if (l.z <= 0.0) continue;
+    const double pdf = kernel::D_ggx(ch, alpha) / 4.0;  // l-space pdf D (n.h) / (4 v.h) with n = v
+    const double omega_s = 1.0 / (count * pdf);
+    // Krivanek & Colbert 2008 eq. 8: the level whose texel solid angle matches the sample's, plus a bias.
+    const double lod = std::clamp(0.5 * std::log2(omega_s / omega_p) + lod_bias_, 0.0, max_lod);
+    out.push_back({l, l.z, lod});
+  }
+  return out;
+}
+
+Rgb GgxFilter::eval(const Vec3& r, const std::vector<Sample>& samples) const {
+  const Frame frame = Frame::from_normal(r);
+  const int max_lod = static_cast<int>(pyramid_.size()) - 1;
+  Rgb sum;
+  double weight = 0.0;
+  for (const Sample& s : samples) {
+    const Vec3 d = frame.to_world(s.l);
+    const int l0 = static_cast<int>(s.lod);
+    const double f = s.lod - l0;
+    Rgb v = sample_cube_seamless(pyramid_[static_cast<std::size_t>(l0)], d);
+    if (f > 0.0 && l0 < max_lod) v = v * (1.0 - f) + sample_cube_seamless(pyramid_[static_cast<std::size_t>(l0 + 1)], d) * f;
+    sum += v * s.weight;
+    weight += s.weight;
+  }
+  return weight > 0.0 ? sum / weight : Rgb{};
+}
+
+GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOptions& o) {
+  const int size = radiance.size;
+  if (size < 1) throw std::invalid_argument("radiance: the input cube map is empty");
+  int max_levels = 1;
+  while ((size >> (max_levels - 1)) > 1) ++max_levels;
+  if (o.levels < 0 || o.levels > max_levels) {
+    throw std::invalid_argument("levels: " + std::to_string(o.levels) + " is out of range [0, " +
+                                std::to_string(max_levels) + "] for face size " + std::to_string(size));
+  }
+  const bool pow2 = (size & (size - 1)) == 0;
+  const int levels = o.levels == 0 ? (pow2 ? max_levels : 1) : o.levels;
+  if (levels > 1 && !pow2) {
+    throw std::invalid_argument("size: face size " + std::to_string(size) + " is not a power of two (mips need one)");
+  }
+  if (o.samples < 1 || o.samples > (1 << 20)) {
+    throw std::invalid_argument("samples: " + std::to_string(o.samples) + " is out of range [1, 2^20]");
+  }
+  if (!std::isfinite(o.lod_bias) || o.lod_bias < 0.0) {
+    throw std::invalid_argument("lod_bias: must be finite and >= 0");
+  }
+
+  const GgxFilter filter(radiance, o.samples, o.lod_bias);
+
+  GgxPrefilteredCube out;
+  out.mapping = {o.mapping, levels};
+  out.samples = o.samples;
+  long long total_rows = 0;
+  for (int i = 1; i < levels; ++i) total_rows += 6LL * std::max(1, size >> i);
+  long long rows_done = 0;
+
+  out.levels.push_back(radiance);  // r_0 = 0: the delta lobe, the input itself
+  out.roughness.push_back(out.mapping.roughness(0));
+  for (int i = 1; i < levels; ++i) {
+    const int n = std::max(1, size >> i);
+    const double r = out.mapping.roughness(i);
+    const std::vector<GgxFilter::Sample> samples = filter.make_samples(r);
+    CubeMap level(n);
+    const auto texel = [&](int face, int x, int y) { return filter.eval(texel_direction(face, x, y, n), samples); };
+    const int rows = 6 * n;
+    const int chunk = std::max(1, rows / 20);
+    for (int start = 0; start < rows; start += chunk) {
+      const int end = std::min(rows, start + chunk);
+      tbb::parallel_for(tbb::blocked_range<int>(start, end), [&](const tbb::blocked_range<int>& range) {
+        for (int row = range.begin(); row != range.end(); ++row) {
+          const int face = row / n;
+          const int y = row % n;
+          for (int x = 0; x < n; ++x) level.set(face, x, y, texel(face, x, y));
+        }
+      });
+      rows_done += end - start;
+      if (o.progress) o.progress(static_cast<double>(rows_done) / static_cast<double>(total_rows));
+    }
+    out.levels.push_back(std::move(level));
+    out.roughness.push_back(r);
+  }
+  return out;
+}
+
+}  // namespace shadelab

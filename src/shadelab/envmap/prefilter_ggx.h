@@ -1,0 +1,102 @@
+// shadelab prefiltered GGX cube mip chain: the radiance convolved with the GGX lobe of the split-sum
+// approximation (Karis 2013, "Real Shading in Unreal Engine 4"), one perceptual roughness per mip level, as
+// engines sample it by roughness next to the DFG table (dfg.h).
+//
+// Under Karis's n = v = R assumption (normal and view both along the lookup direction R), the value at R is
+//   out(R) = integral L(l) D(h) max(R.l, 0) dl / integral D(h) max(R.l, 0) dl,   h = normalize(R + l),
+// D = GGX (microfacet.sl D_ggx) at alpha = r^2, r the perceptual roughness. Derivation: Karis's estimator is
+// sum L(l_k) (n.l_k) / sum (n.l_k) with h_k drawn from D(h) (n.h), i.e. l_k from D (n.h) / (4 v.h), which is
+// D / 4 when n = v; its limit is the ratio above (the 1/4 cancels).
+//
+// Contract:
+// - Level i has face size max(1, size >> i) and roughness r_i of the mapping (GgxMipMapping); level 0
+//   (r = 0, a delta lobe) is the input, bit for bit.
+// - Method: filtered importance sampling (Krivanek & Colbert 2008, "Real-time Shading with Filtered
+//   Importance Sampling", eq. 7-8): `samples` deterministic Hammersley half vectors drawn from D(h) (n.h)
+//   per output texel (the same set for every texel, rotated into the frame of R); sample k with l-space
+//   pdf p_k = D(h_k) / 4 reads the input pyramid (solid-angle-weighted halving) at
+//   lod = max(0, 0.5 log2(Omega_s / Omega_p) + lod_bias), Omega_s = 1 / (samples p_k) the sample's solid
+//   angle and Omega_p = 4 pi / (6 N^2) the mean solid angle of an input texel; trilinear between pyramid
+//   levels, bilinear inside one with taps that cross face edges (a tap past an edge reads the texel of the
+//   neighbouring face that its direction falls in; a tap past a corner, the mean of the three texels
+//   meeting there), so there are no seams.
+// - Deterministic: the same options give the same bits for any thread count (TBB over rows, fixed samples).
+// - Errors throw std::invalid_argument naming the option: levels < 0 or > log2(size) + 1 ("levels"), a face
+//   size that is not a power of two with more than one level ("size"), samples < 1 or > 2^20 ("samples"),
+//   a non-finite or negative lod_bias ("lod_bias"), an empty input ("radiance").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "shadelab/envmap/cubemap.h"
+#include "shadelab/envmap/irradiance.h"
+
+namespace shadelab {
+
+// How mip level i of L maps to perceptual roughness (the shader's lod for roughness r is the inverse).
+enum class GgxRoughnessMapping {
+  linear,    // lod = r (L - 1), r_i = i / (L - 1) (glTF-Sample-Viewer's ibl_sampler / shader)
+  filament,  // lod = r (2 - r) (L - 1), r_i = 1 - sqrt(1 - i / (L - 1)) (Filament's perceptualRoughnessToLod)
+};
+
+// The mapping of a baked chain, as the container writers store it (KTX2 key/value, DDS sidecar JSON).
+struct GgxMipMapping {
+  GgxRoughnessMapping kind = GgxRoughnessMapping::linear;
+  int levels = 1;
+
+  double roughness(int level) const;  // perceptual roughness r_i of level i
+  double lod(double r) const;         // the (fractional) level a shader reads for perceptual roughness r
+  const char* name() const;           // "linear" | "filament"
+  std::string formula() const;        // e.g. "lod = r * (levels - 1)", levels written out
+};
+
+// "linear" / "filament" -> the mapping; throws std::invalid_argument naming the option "mapping" otherwise.
+GgxRoughnessMapping parse_ggx_roughness_mapping(const std::string& name);
+
+struct GgxPrefilterOptions {
+  int levels = 0;     // 0: down to 1 x 1 (log2(size) + 1 levels)
+  GgxRoughnessMapping mapping = GgxRoughnessMapping::linear;
+  int samples = 1024;     // Hammersley half vectors per output texel
+  double lod_bias = 0.0;  // added to the solid-angle-matched level (Krivanek & Colbert suggest 1)
+  ProgressFn progress;    // called on the calling thread between chunks of rows
+};
+
+struct GgxPrefilteredCube {
+  std::vector<CubeMap> levels;
+  GgxMipMapping mapping;
+  std::vector<double> roughness;  // perceptual roughness of each level
+  int samples = 0;
+};
+
+// The mip chain described above; the face size of level 0 is radiance.size.
+GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOptions& options);
+
+// The reference: out(R) of the formula above summed over every input texel with its exact solid angle
+// (no sampling, no pyramid), at perceptual roughness r > 0. O(6 N^2) per direction.
+Rgb prefilter_ggx_brute_force(const CubeMap& radiance, const Vec3& r, double roughness);
+
+// A bilinear lookup at direction dir that crosses face edges (the reads of prefilter_ggx).
+Rgb sample_cube_seamless(const CubeMap& cube, const Vec3& dir);
+
+// The filter of prefilter_ggx at any direction: the input pyramid built once, then out(R) at perceptual
+// roughness r > 0 from a sample set (make_samples), exactly as prefilter_ggx computes a texel of R's level.
+class GgxFilter {
+ public:
+  struct Sample {
+    Vec3 l;         // local frame, R = +Z
+    double weight;  // R.l
+    double lod;     // fractional pyramid level
+  };
+  GgxFilter(const CubeMap& radiance, int samples, double lod_bias);
+  std::vector<Sample> make_samples(double roughness) const;
+  Rgb eval(const Vec3& r, const std::vector<Sample>& samples) const;
+  const std::vector<CubeMap>& pyramid() const { return pyramid_; }
+
+ private:
+  std::vector<CubeMap> pyramid_;
+  int samples_;
+  double lod_bias_;
+};
+
+}  // namespace shadelab

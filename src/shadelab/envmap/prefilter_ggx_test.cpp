@@ -1,0 +1,289 @@
+#include "shadelab/envmap/prefilter_ggx.h"
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cstdint>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include "shadelab/core/constants.h"
+#include "shadelab/envmap/latlong.h"
+#include "shadelab/image/image_io.h"
+
+namespace shadelab {
+namespace {
+
+CubeMap make_cube(int n, const std::function<Rgb(const Vec3&)>& f) {
+  CubeMap c(n);
+  for (int face = 0; face < 6; ++face)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) c.set(face, x, y, f(texel_direction(face, x, y, n)));
+  return c;
+}
+
+// The reference, written here independently of the library: every input texel with its exact solid angle and
+// the GGX lobe D(h) max(R.l, 0), D = alpha^2 / (pi ((alpha^2 - 1) (R.h)^2 + 1)^2), h = (R + l)/|R + l|.
+Rgb brute_force(const CubeMap& env, const Vec3& r, double roughness) {
+  const double a2 = std::pow(roughness, 4.0);
+  Rgb sum;
+  double weight = 0.0;
+  for (int f = 0; f < 6; ++f)
+    for (int y = 0; y < env.size; ++y)
+      for (int x = 0; x < env.size; ++x) {
+        const Vec3 l = texel_direction(f, x, y, env.size);
+        const double rl = dot(r, l);
+        if (rl <= 0.0) continue;
+        const Vec3 sum_rl = r + l;
+        const double c = dot(r, sum_rl) / std::sqrt(dot(sum_rl, sum_rl));
+        const double d = (a2 - 1.0) * c * c + 1.0;
+        const double w = a2 / (pi * d * d) * rl * cube_texel_solid_angle(x, y, env.size);
+        sum += env.texel(f, x, y) * w;
+        weight += w;
+      }
+  return sum / weight;
+}
+
+// A smooth analytic sky plus a deterministic per-texel pattern (a hash), so both low and high frequencies count.
+CubeMap test_environment(int n) {
+  CubeMap c = make_cube(n, [](const Vec3& d) {
+    return Rgb{1.0 + 0.8 * d.z + 0.5 * d.x * d.y, 0.6 + 0.5 * std::max(0.0, d.y) + 0.3 * d.x, 1.2 - 0.4 * d.y * d.y};
+  });
+  std::uint32_t h = 12345u;
+  for (int f = 0; f < 6; ++f)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        h = h * 1664525u + 1013904223u;
+        const double noise = 0.5 * static_cast<double>(h >> 8) / static_cast<double>(1u << 24);
+        c.set(f, x, y, c.texel(f, x, y) * (0.75 + noise));
+      }
+  return c;
+}
+
+double rel(const Rgb& a, const Rgb& b) {
+  return std::max({std::abs(a.r - b.r) / b.r, std::abs(a.g - b.g) / b.g, std::abs(a.b - b.b) / b.b});
+}
+
+TEST(PrefilterGgx, Mapping) {
+  const GgxMipMapping lin{GgxRoughnessMapping::linear, 5};
+  EXPECT_DOUBLE_EQ(lin.roughness(0), 0.0);
+  EXPECT_DOUBLE_EQ(lin.roughness(2), 0.5);
+  EXPECT_DOUBLE_EQ(lin.roughness(4), 1.0);
+  EXPECT_DOUBLE_EQ(lin.lod(0.5), 2.0);
+  EXPECT_EQ(lin.formula(), "lod = r * 4");
+  const GgxMipMapping fil{GgxRoughnessMapping::filament, 6};
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(fil.lod(fil.roughness(i)), i, 1e-12) << i;  // lod is the inverse
+  EXPECT_NEAR(fil.lod(0.5), 5 * 0.75, 1e-12);
+  EXPECT_STREQ(fil.name(), "filament");
+  EXPECT_EQ(parse_ggx_roughness_mapping("filament"), GgxRoughnessMapping::filament);
+  EXPECT_THROW(parse_ggx_roughness_mapping("cubic"), std::invalid_argument);
+}
+
+TEST(PrefilterGgx, ConstantStaysConstantAtEveryLevel) {
+  const CubeMap env = make_cube(16, [](const Vec3&) { return Rgb{0.5, 1.0, 2.0}; });
+  GgxPrefilterOptions o;
+  o.samples = 64;
+  const GgxPrefilteredCube p = prefilter_ggx(env, o);
+  ASSERT_EQ(p.levels.size(), 5u);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < p.levels.size(); ++i) {
+    const CubeMap& level = p.levels[i];
+    EXPECT_EQ(level.size, 16 >> i);
+    for (int f = 0; f < 6; ++f)
+      for (int y = 0; y < level.size; ++y)
+        for (int x = 0; x < level.size; ++x) worst = std::max(worst, rel(level.texel(f, x, y), Rgb{0.5, 1.0, 2.0}));
+  }
+  EXPECT_LE(worst, 1e-3);
+}
+
+TEST(PrefilterGgx, LevelZeroIsTheInputBitForBit) {
+  const CubeMap env = test_environment(16);
+  GgxPrefilterOptions o;
+  o.levels = 3;
+  o.samples = 16;
+  const GgxPrefilteredCube p = prefilter_ggx(env, o);
+  ASSERT_EQ(p.levels.size(), 3u);
+  EXPECT_EQ(p.roughness[0], 0.0);
+  for (int f = 0; f < 6; ++f) {
+    const auto& a = p.levels[0].faces[static_cast<std::size_t>(f)].data;
+    const auto& b = env.faces[static_cast<std::size_t>(f)].data;
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << "face " << f;
+  }
+}
+
+TEST(PrefilterGgx, LibraryBruteForceMatchesTheTestsOwn) {
+  const CubeMap env = test_environment(8);
+  for (const Vec3& r : {Vec3{0.3, -0.5, 0.8}, Vec3{1.0, 0.0, 0.0}, Vec3{-0.2, 0.9, -0.1}}) {
+    const Vec3 u = normalize(r);
+    EXPECT_LE(rel(prefilter_ggx_brute_force(env, u, 0.5), brute_force(env, u, 0.5)), 1e-12);
+  }
+}
+
+TEST(PrefilterGgx, MidLevelAgainstBruteForce) {
+  // r = 0.5 (level 2 of 5, face 8) of a 32^2-per-face environment, every texel.
+  const CubeMap env = test_environment(32);
+  GgxPrefilterOptions o;
+  o.levels = 5;
+  const GgxPrefilteredCube p = prefilter_ggx(env, o);
+  ASSERT_DOUBLE_EQ(p.roughness[2], 0.5);
+  const int n = 8;
+  std::vector<Rgb> ref;
+  for (int f = 0; f < 6; ++f)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) ref.push_back(brute_force(env, texel_direction(f, x, y, n), 0.5));
+  const auto errors = [&](const CubeMap& level, double& mean, double& worst) {
+    mean = worst = 0.0;
+    std::size_t k = 0;
+    for (int f = 0; f < 6; ++f)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const double e = rel(level.texel(f, x, y), ref[k++]);
+          worst = std::max(worst, e);
+          mean += e / (6.0 * n * n);
+        }
+  };
+  double mean = 0.0;
+  double worst = 0.0;
+  errors(p.levels[2], mean, worst);
+  std::printf("r = 0.5 on 32^2, default options: mean relative error %.3g, max %.3g\n", mean, worst);
+  EXPECT_LE(worst, 0.01);
+  // The effect of the sample count and the lod bias (printed for docs/envmap.md; the default is asserted).
+  for (const int samples : {256, 1024, 4096})
+    for (const double bias : {0.0, 0.5, 1.0}) {
+      GgxPrefilterOptions q = o;
+      q.samples = samples;
+      q.lod_bias = bias;
+      errors(prefilter_ggx(env, q).levels[2], mean, worst);
+      std::printf("  samples %d lod_bias %.1f: mean %.3g max %.3g\n", samples, bias, mean, worst);
+    }
+}
+
+TEST(PrefilterGgx, BrightTexelSpreadsSymmetricallyAcrossAnEdge) {
+  // One bright texel on +X next to its edge with -Z (s = 1 on +X, sc = -rz = 1). Its response at directions
+  // rotated by +-theta about the y axis (one into +X, one across the edge onto -Z) must be the same, as it is
+  // for the brute force (the lobe depends only on the angle to the texel).
+  const int n = 32;
+  CubeMap env = make_cube(n, [](const Vec3&) { return Rgb::gray(0.01); });
+  const int y = n / 2;
+  env.set(0, n - 1, y, Rgb::gray(1000.0));
+  const Vec3 d0 = texel_direction(0, n - 1, y, n);
+  const GgxFilter filter(env, 1024, 0.0);
+  const auto rotate = [](const Vec3& v, double a) {
+    return Vec3{v.x * std::cos(a) + v.z * std::sin(a), v.y, -v.x * std::sin(a) + v.z * std::cos(a)};
+  };
+  // The difference of the two responses relative to the response at the texel itself (the peak), within the
+  // lobe (theta up to 0.18 rad).
+  double worst = 0.0;
+  double worst_brute = 0.0;
+  for (const double r : {0.25, 0.5}) {
+    const auto samples = filter.make_samples(r);
+    const double peak = filter.eval(d0, samples).g;
+    const double peak_brute = brute_force(env, d0, r).g;
+    for (int k = 1; k <= 6; ++k) {
+      const double theta = k * 0.03;
+      const Vec3 in = rotate(d0, -theta);  // toward +X's centre
+      const Vec3 out = rotate(d0, theta);  // across the edge onto -Z
+      ASSERT_EQ(cube_coord(in).face, 0);
+      ASSERT_EQ(cube_coord(out).face, 5);
+      const double a = filter.eval(in, samples).g;
+      const double b = filter.eval(out, samples).g;
+      std::printf("  r %.2f theta %.2f: +X %.4g -Z %.4g (brute %.4g %.4g)\n", r, theta, a, b, brute_force(env, in, r).g,
+                  brute_force(env, out, r).g);
+      // Asserted at r = 0.25; at r = 0.5 the filter's own error for a single hot texel (~15% of the peak,
+      // against the brute force, on both sides alike) is printed and exceeds any seam effect.
+      if (r == 0.25) worst = std::max(worst, std::abs(a - b) / peak);
+      worst_brute = std::max(worst_brute, std::abs(brute_force(env, in, r).g - brute_force(env, out, r).g) / peak_brute);
+    }
+  }
+  std::printf("edge asymmetry: filter %.3g, brute force %.3g\n", worst, worst_brute);
+  EXPECT_LE(worst_brute, 0.01);  // the reference is symmetric to this
+  EXPECT_LE(worst, 0.03);
+}
+
+TEST(PrefilterGgx, BadOptionsNameTheOption) {
+  const CubeMap env = make_cube(16, [](const Vec3&) { return Rgb::gray(1.0); });
+  const auto message = [](const CubeMap& cube, const GgxPrefilterOptions& options) {
+    try {
+      prefilter_ggx(cube, options);
+    } catch (const std::invalid_argument& ex) {
+      return std::string(ex.what());
+    }
+    return std::string("no exception");
+  };
+  GgxPrefilterOptions o;
+  o.levels = 6;  // log2(16) + 1 = 5
+  EXPECT_EQ(message(env, o).rfind("levels:", 0), 0u) << message(env, o);
+  o.levels = -1;
+  EXPECT_EQ(message(env, o).rfind("levels:", 0), 0u);
+  o.levels = 5;
+  EXPECT_EQ(message(env, o), "no exception");
+  o.levels = 0;
+  o.samples = 0;
+  EXPECT_EQ(message(env, o).rfind("samples:", 0), 0u) << message(env, o);
+  o.samples = 16;
+  o.lod_bias = std::nan("");
+  EXPECT_EQ(message(env, o).rfind("lod_bias:", 0), 0u);
+  o.lod_bias = 1.0;
+  const CubeMap odd = make_cube(12, [](const Vec3&) { return Rgb::gray(1.0); });
+  o.levels = 2;
+  EXPECT_EQ(message(odd, o).rfind("size:", 0), 0u) << message(odd, o);
+  o.levels = 1;
+  EXPECT_EQ(message(odd, o), "no exception");  // no mips asked: any size
+  EXPECT_EQ(message(CubeMap{}, o).rfind("radiance:", 0), 0u);
+}
+
+TEST(PrefilterGgx, SameBitsForAnyThreadCount) {
+  const CubeMap env = test_environment(16);
+  GgxPrefilterOptions o;
+  o.samples = 64;
+  const GgxPrefilteredCube a = prefilter_ggx(env, o);
+  GgxPrefilteredCube b;
+  {
+    tbb::task_arena one(1);
+    one.execute([&] { b = prefilter_ggx(env, o); });
+  }
+  for (std::size_t i = 0; i < a.levels.size(); ++i)
+    for (int f = 0; f < 6; ++f)
+      EXPECT_EQ(a.levels[i].faces[static_cast<std::size_t>(f)].data, b.levels[i].faces[static_cast<std::size_t>(f)].data);
+}
+
+TEST(PrefilterGgx, BlenderWorldAgainstBruteForce) {
+  // The measured error of the default bake on a real HDRI (blender-data's courtyard, CC0), 32^2 per face.
+  const std::filesystem::path dir = SHADELAB_BLENDER_WORLDS;
+  ASSERT_TRUE(std::filesystem::is_directory(dir)) << dir << " is missing: scripts/setup.sh installs blender-data";
+  const auto img = read_image(dir / "courtyard.exr");
+  ASSERT_TRUE(img.has_value()) << img.error().message;
+  const CubeMap env = latlong_to_cube(*img, 32, 2);
+  const auto t0 = std::chrono::steady_clock::now();
+  const GgxPrefilteredCube p = prefilter_ggx(env, GgxPrefilterOptions{});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("courtyard 32^2, %zu levels, %d samples: %.3f s\n", p.levels.size(), p.samples, seconds);
+  for (std::size_t i = 1; i < p.levels.size(); ++i) {
+    const CubeMap& level = p.levels[i];
+    double worst = 0.0;
+    double mean = 0.0;
+    for (int f = 0; f < 6; ++f)
+      for (int y = 0; y < level.size; ++y)
+        for (int x = 0; x < level.size; ++x) {
+          const Rgb ref = brute_force(env, texel_direction(f, x, y, level.size), p.roughness[i]);
+          const double e = std::abs(level.texel(f, x, y).average() - ref.average()) / ref.average();
+          worst = std::max(worst, e);
+          mean += e / (6.0 * level.size * level.size);
+        }
+    std::printf("  level %zu r = %.2f: mean %.4f max %.4f\n", i, p.roughness[i], mean, worst);
+    EXPECT_LE(mean, 0.08) << "level " << i;  // regression bounds above the figures measured in docs/envmap.md
+    EXPECT_LE(worst, 0.5) << "level " << i;
+  }
+}
+
+}  // namespace
+}  // namespace shadelab
