@@ -1,6 +1,12 @@
 # Builds a shadelab scene (Lambert spheres and quads, emissive spheres and quads, a uniform environment) in
 # Blender and renders it with Cycles, for bench/cycles_compare.sh. Run as:
-#   blender -b --factory-startup --python bench/cycles_compare.py -- SCENE.json SPP OUT.exr THREADS
+#   blender -b --factory-startup --python bench/cycles_compare.py -- SCENE.json SPP OUT.exr THREADS [SEED]
+# Settings chosen to match shadelab exactly: the same number of scattering events (shadelab's max_depth counts
+# path vertices, 1 = direct light only; Cycles' max_bounces counts bounces after the first hit, 0 = direct
+# light only, so max_bounces = max_depth - 1), the same pixel filter (shadelab averages over the pixel square:
+# Cycles' box filter of width 1 pixel), no denoising, no adaptive sampling, no clamping, no glossy blur and no
+# light threshold (all of which bias Cycles' estimate). Cycles' sampling pattern stays its default
+# (progressive multi-jitter in Blender 3.4), the one its users get.
 # shadelab is Y-up, Blender Z-up: (x, y, z) -> (x, -z, y). Cycles' Diffuse BSDF is Lambert kd/pi, an Emission
 # shader of strength 1 emits radiance equal to its colour, and the world Background is radiance: the scene's
 # radiometric values carry over unchanged.
@@ -13,6 +19,7 @@ import bpy
 
 args = sys.argv[sys.argv.index("--") + 1:]
 scene_path, spp, out_path, threads = args[0], int(args[1]), args[2], int(args[3])
+seed = int(args[4]) if len(args) > 4 else 0
 with open(scene_path) as f:
     doc = json.load(f)
 if doc.get("units", "game") != "radiometric":
@@ -34,12 +41,19 @@ scene.cycles.device = "CPU"
 scene.cycles.samples = spp
 scene.cycles.use_denoising = False
 scene.cycles.use_adaptive_sampling = False
+scene.cycles.seed = seed
 depth = doc.get("render", {}).get("max_depth", 8)
-scene.cycles.max_bounces = depth
-scene.cycles.diffuse_bounces = depth
+bounces = depth - 1  # see the top of this file
+scene.cycles.max_bounces = bounces
+scene.cycles.diffuse_bounces = bounces
+scene.cycles.glossy_bounces = bounces
+scene.cycles.transmission_bounces = bounces
 scene.cycles.sample_clamp_direct = 0.0
 scene.cycles.sample_clamp_indirect = 0.0
-scene.cycles.filter_width = 0.01  # shadelab uses a box filter over the pixel
+scene.cycles.blur_glossy = 0.0
+scene.cycles.light_sampling_threshold = 0.0
+scene.cycles.pixel_filter_type = "BOX"
+scene.cycles.filter_width = 1.0  # pixels: the box over the pixel square that shadelab averages
 scene.render.threads_mode = "FIXED"
 scene.render.threads = threads
 cam = doc["camera"]
@@ -115,5 +129,8 @@ scene.camera = cam_obj
 start = time.time()
 bpy.ops.render.render(write_still=True)
 seconds = time.time() - start
+# seconds: scene synchronisation (BVH build, light distributions) + rendering + writing the file. The render
+# time without synchronisation is read by the caller from Cycles' progress lines ("Sample 0/N" to "Finished").
 print("CYCLES_RESULT %s" % json.dumps({"seconds": seconds, "samples": cam["width"] * cam["height"] * spp,
+                                       "sampling_pattern": scene.cycles.sampling_pattern, "max_bounces": bounces,
                                        "samples_per_second": cam["width"] * cam["height"] * spp / seconds}))

@@ -13,6 +13,9 @@ packages=(
   blender-data
   glslang-tools spirv-tools mesa-vulkan-drivers libvulkan-dev chromium
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
+  parallel slurm-wlm slurm-client munge
+  emscripten
+  clang-14 libclang-rt-14-dev llvm-14
 )
 
 # The independent KTX 2 reader of the container tests (tools/containers): npm's ktx-parse, pinned by its
@@ -30,11 +33,23 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages already installed"
-  exit 0
+else
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  echo "setup: installing ${missing[*]}"
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -q
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-echo "setup: installing ${missing[*]}"
-$SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -q
-$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
+# The explorer's browser tests: playwright-core pinned in tools/explore/test/package-lock.json (it drives
+# Debian's chromium; it downloads no browser). Node.js is the machine's (Debian's nodejs where it has none).
+explore_tests="$(dirname "$0")/../tools/explore/test"
+if ! command -v npm >/dev/null 2>&1; then
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends nodejs npm
+fi
+if [ ! -f "$explore_tests/node_modules/.package-lock.json" ] ||
+   [ "$explore_tests/package-lock.json" -nt "$explore_tests/node_modules/.package-lock.json" ]; then
+  (cd "$explore_tests" && npm ci --no-audit --no-fund)
+fi

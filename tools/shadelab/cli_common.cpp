@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "shadelab/core/text.h"
+#include "shadelab/scene/default_scene.h"
 
 namespace shadelab::cli {
 
@@ -118,6 +119,11 @@ std::uint64_t parse_seed(const std::string& option, const std::string& text) {
     throw UsageError(option + ": '" + text + "' is not an integer in [0, 18446744073709551615]");
   }
   return v;
+}
+
+const Scene& built_in_scene() {
+  static const Scene scene = default_scene();
+  return scene;
 }
 
 void warn(const std::string& message) { std::cerr << "shadelab: warning: " << printable_message(message) << "\n"; }

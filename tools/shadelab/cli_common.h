@@ -69,8 +69,23 @@ void check_range(const std::string& option, bool given, long long value, long lo
 // A seed: a decimal integer in [0, 2^64 - 1], nothing else (no sign, no wrap-around, no saturation).
 std::uint64_t parse_seed(const std::string& option, const std::string& text);
 
+// The built-in default scene (scene/default_scene.h), built once per process and copied by the commands
+// that render it: its procedural textures take a while, and the CLI fuzz harness asks for it again and again.
+const Scene& built_in_scene();
+
 // A warning line on stderr ("shadelab: warning: ..."), printable and bounded like an error.
 void warn(const std::string& message);
+
+// The whole command line (main.cpp): parses argv, runs the command, maps errors to exit codes 0/1/2/3.
+int run_cli(int argc, const char* const* argv);
+
+// A command calls work_begins() where its options and inputs are checked and its work (rendering, baking,
+// quadrature, writing files) starts. Normally it does nothing; in validation-only mode (set by the CLI fuzz
+// harness, fuzz/fuzz_cli.cpp) it throws ValidationDone, which run_cli turns into exit code 0, so the parse
+// and validation path runs without the work and without writing anything.
+struct ValidationDone {};
+void work_begins();
+void set_validation_only(bool on);
 
 // Commands register themselves on the app and store the action to run after parsing.
 struct Command {

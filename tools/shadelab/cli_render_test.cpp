@@ -51,6 +51,7 @@ TEST(CliRender, BadInput) {
   expect_usage_error("render " + furnace + " --spp 0", "--spp");
   expect_usage_error("render " + furnace + " --out x.png", "--out");
   expect_usage_error("render " + furnace + " --sampling random", "--sampling");
+  expect_usage_error("render " + furnace + " --sampler halton", "--sampler");
   const fs::path bad = temp_dir() / "bad.json";
   std::ofstream(bad) << R"({"shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": -2, "material": "x"}]})";
   expect_usage_error("render " + bad.string(), "/shapes/0/radius");

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 
@@ -151,6 +153,48 @@ vec3 my_blinn(vec3 wi, vec3 wo) {
   const auto r = run("shader verify blinn-phong-modified --lang glsl --entry my_blinn --source " + f.string());
   EXPECT_EQ(r.code, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("PASS"), std::string::npos);
+}
+
+// Models with energy compensation read the GGX energy tables from a uniform block; --tables-out writes its
+// bytes: 528 vec4 of little-endian float, E(mu, alpha) for 2 x 32 x 32 texels, then 2 x 32 averages. The
+// numbers themselves are checked on the driver (VerifyLavapipe, WebGL2); here the file's shape and the
+// physics a reader can check without the library: the mirror row (alpha = 0) reflects everything, E = 1, and
+// every entry is an albedo in (0, 1], smaller at the roughest row than at the smoothest.
+TEST(CliShader, TablesOutWritesTheEnergyTablesBlock) {
+  const fs::path out = temp_dir() / "ggx.glsl";
+  const fs::path tables = temp_dir() / "ggx_energy.bin";
+  const auto r = run("shader ggx --param ms=kulla-conty --lang glsl --out " + out.string() + " --tables-out " +
+                     tables.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string text = read(out);
+  EXPECT_NE(text.find("uniform ShadelabGgxEnergy {\n  vec4 shadelab_ggx_energy[528];\n};"), std::string::npos);
+  EXPECT_NE(text.find("--tables-out FILE"), std::string::npos);
+  std::ifstream f(tables, std::ios::binary);
+  std::vector<char> raw((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(raw.size(), 528u * 16u);
+  std::vector<float> v(raw.size() / 4);
+  std::memcpy(v.data(), raw.data(), raw.size());
+  for (int g = 0; g < 2; ++g) {
+    for (int col = 0; col < 32; ++col) EXPECT_EQ(v[(g * 32 + 0) * 32 + col], 1.0f) << g << " " << col;
+    EXPECT_EQ(v[2048 + g * 32], 1.0f);                                        // E_avg at alpha = 0
+    EXPECT_LT(v[(g * 32 + 31) * 32 + 31], v[(g * 32 + 1) * 32 + 31]);        // rougher reflects less at mu = 1
+    EXPECT_LT(v[2048 + g * 32 + 31], v[2048 + g * 32 + 1]);
+  }
+  for (std::size_t i = 0; i < 2048 + 64; ++i) {
+    EXPECT_GT(v[i], 0.0f) << i;
+    EXPECT_LE(v[i], 1.0f) << i;
+  }
+  for (std::size_t i = 2048 + 64; i < v.size(); ++i) EXPECT_EQ(v[i], 0.0f);  // the padding of the last vec4s
+  // The HLSL export declares the same block as a cbuffer; a model without tables has none to write.
+  const auto h = run("shader filament --lang hlsl");
+  ASSERT_EQ(h.code, 0) << h.err;
+  EXPECT_NE(h.out.find("cbuffer ShadelabGgxEnergy {\n  float4 shadelab_ggx_energy[528];\n};"), std::string::npos);
+  EXPECT_EQ(run("shader lambert --lang glsl").out.find("ShadelabGgxEnergy"), std::string::npos);
+  const fs::path none = temp_dir() / "lambert_tables.bin";
+  expect_usage_error("shader lambert --lang glsl --tables-out " + none.string(),
+                     "--tables-out: the model 'lambert' with these parameters reads no tables");
+  EXPECT_FALSE(fs::exists(none));
+  expect_usage_error("shader verify ggx --lang glsl --tables-out " + none.string(), "--tables-out: only for shader export");
 }
 
 TEST(CliShader, BadInput) {

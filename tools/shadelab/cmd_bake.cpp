@@ -335,6 +335,7 @@ void run_irradiance(const BakeOptions& o) {
   check_layout(o, out);
   const TexelFormat format = check_format(o, out);
   check_bake_outputs(o, {{"--out", out}});
+  work_begins();
   // A lat-long input is convolved over its own texels (exact for the map as given: no resampling to a cube,
   // whose texels would move a bright low sun across the horizon of the normals below it), unless
   // --input-size asks for a cube of that size first.
@@ -409,6 +410,7 @@ void run_sh(const BakeOptions& o) {
     require_extension("--out", o.out, {".json"}, "the SH9 coefficients (JSON)");
     check_bake_outputs(o, {{"--out", o.out}});
   }
+  work_begins();
   // A lat-long input is projected texel by texel (each with its exact solid angle), without resampling to a
   // cube first, unless --input-size asks for that cube: the command then costs about one read of the file.
   Image img = read_environment_image(o);
@@ -496,6 +498,7 @@ void run_specular(const BakeOptions& o) {
     return v;
   }();
   check_bake_outputs(o, planned);
+  work_begins();
   std::vector<CubeMap> levels;
   nlohmann::json mip_mapping;
   std::vector<double> exponents;
@@ -574,9 +577,10 @@ void run_convert(const BakeOptions& o) {
   check_layout(o, o.out);
   const TexelFormat format = check_format(o, o.out);
   check_bake_outputs(o, {{"--out", o.out}});
+  if (o.has("--size")) check_size("--size", o.size, 4096);
+  work_begins();
   CubeMap env = load_environment(o);
   if (o.has("--size")) {
-    check_size("--size", o.size, 4096);
     // Resample through the lat-long form with area filtering when the size changes.
     if (o.size != env.size) env = latlong_to_cube(cube_to_latlong(env, 4 * std::max(env.size, o.size)), o.size);
   }

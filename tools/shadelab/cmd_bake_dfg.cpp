@@ -104,6 +104,7 @@ void run_dfg(const DfgCliOptions& o, const std::vector<std::string>& given) {
   options.size = o.size;
   options.samples = o.samples;
   options.multiscatter = o.multiscatter;
+  work_begins();
   const DfgTable t = bake_dfg(options);
   const std::string ext = lower_ext(out);
   const Ktx2ImageFormat ktx2_format = o.multiscatter ? Ktx2ImageFormat::rgba16f : Ktx2ImageFormat::rg16f;

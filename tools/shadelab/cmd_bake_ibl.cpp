@@ -129,6 +129,7 @@ void run_ibl(const IblOptions& o) {
   check_outputs({{"INPUT", o.input}}, outputs);
 
   // Compute and encode everything.
+  work_begins();
   const Image img = read_environment(o.input);
   const GgxPrefilteredCube chain =
       bake_ggx_chain(environment_cube_at(img, o.input, o.size), o.levels, mapping, o.samples, o.progress);

@@ -80,6 +80,7 @@ void run_albedo(const BrdfOptions& o) {
       throw UsageError(fmt::format("--theta: {} is out of range [0, 90) degrees", t));
     }
   }
+  work_begins();
   if (!o.json) fmt::print("{:>8}  {:>12} {:>12} {:>12}\n", "theta", "albedo r", "g", "b");
   for (double t : thetas) {
     const Rgb a = directional_albedo(*f, deg_to_rad(t)).albedo;
@@ -90,6 +91,8 @@ void run_albedo(const BrdfOptions& o) {
 }
 
 void run_check(const BrdfOptions& o) {
+  (void)build_brdf(o.model, o.params);  // a bad model or parameter is refused before the checks run
+  work_begins();
   const CheckReport report = unwrap(check_brdf(o.model, parse_assignments(o.params)));
   nlohmann::json items = nlohmann::json::array();
   for (const auto& item : report.items) {

@@ -69,6 +69,7 @@ void run_compare(const CompareCliOptions& o) {
   check_png_output("--side-by-side", o.side_by_side);
   check_outputs({{"A", o.a}, {"B", o.b}}, {{"--heatmap", o.heatmap}, {"--side-by-side", o.side_by_side}});
 
+  work_begins();
   ReadInfo info_a;
   ReadInfo info_b;
   const Image a = unwrap(read_image(o.a, &info_a));

@@ -157,6 +157,7 @@ void run_lobe(const LobeCliOptions& o) {
   lo.fixed = o.fixed == "light" ? LobeFixed::light : LobeFixed::viewer;
   const PlotChannel channel = parse_channel(o.channel);
   const auto models = build_models(o.models, o.params);
+  work_begins();
 
   const bool light_fixed = lo.fixed == LobeFixed::light;
   const std::string fixed_name = light_fixed ? "light" : "viewer";
@@ -244,6 +245,7 @@ void run_albedo_plot(const AlbedoCliOptions& o) {
   const PlotChannel channel = parse_channel(o.channel);
   const auto models = build_models(o.models, o.params);
   const std::vector<double> thetas = o.theta.empty() ? default_albedo_angles() : o.theta;
+  work_begins();
 
   LinePlot plot;
   plot.title = o.chart.title.empty() ? "Directional albedo" : o.chart.title;
@@ -317,6 +319,7 @@ void run_fv(const FvCliOptions& o) {
     throw UsageError(fmt::format("--samples: {} is out of range [2, 100001]", o.samples));
   }
   const std::vector<double> f0s = o.f0.empty() ? default_fv_f0() : o.f0;
+  work_begins();
 
   LinePlot plot;
   plot.title = o.chart.title.empty() ? "Minimalist F V against Schlick F × Kelemen V" : o.chart.title;
@@ -394,6 +397,7 @@ void run_zoo_plot(const ZooCliOptions& o) {
   }
   const std::vector<double> n =
       o.linear ? linear_spaced(o.n_min, o.n_max, o.samples) : log_spaced(o.n_min, o.n_max, o.samples);
+  work_begins();
   auto curves = zoo_curves(n, o.rows);
   if (!curves) throw UsageError("--row: " + curves.error().message);
 

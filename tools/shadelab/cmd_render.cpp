@@ -2,7 +2,8 @@
 // Without SCENE it renders the built-in default scene. Ctrl-C (or SIGTERM) stops after the current pass and
 // writes the image accumulated so far (exit code 130, 143 for SIGTERM); the handler stays installed through
 // the write, so a signal then still ends in complete files. A render with NaN or infinite samples says so on
-// stderr and in --json ("nonfinite_samples") and exits with 1.
+// stderr and in --json ("nonfinite_samples") and exits with 1. With --shard I/N [--split samples|tiles] it
+// renders one part for `shadelab merge` (cmd_merge.cpp, docs/scale-out.md) and skips a part already done.
 #include <fmt/core.h>
 
 #include <atomic>
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 
 #include "cli_common.h"
@@ -17,8 +19,8 @@
 #include "shadelab/render/film.h"
 #include "shadelab/render/game_renderer.h"
 #include "shadelab/render/path_tracer.h"
+#include "shadelab/render/shard_file.h"
 #include "shadelab/render/threads.h"
-#include "shadelab/scene/default_scene.h"
 #include "shadelab/scene/scene_json.h"
 
 namespace shadelab::cli {
@@ -64,6 +66,7 @@ struct RenderCliOptions {
   bool no_png = false;
   std::string mode = "reference";
   std::string sampling = "mis";
+  std::string sampler = "sobol";
   std::string ambient = "sh9";
   bool no_shadows = false;
   bool no_specular_ambient = false;
@@ -71,7 +74,97 @@ struct RenderCliOptions {
   bool sh_lights = false;
   bool json = false;
   bool progress = false;
+  std::string shard;  // "I/N": render one part for `shadelab merge` (docs/scale-out.md)
+  std::string split = "samples";
+  bool split_given = false;
 };
+
+// "I/N" with 0 <= I < N <= max_shards; anything else names --shard.
+constexpr int max_shards = 100000;
+ShardSpec parse_shard(const std::string& text, const std::string& split) {
+  ShardSpec spec;
+  const auto slash = text.find('/');
+  auto number = [&](const std::string& part) -> long long {
+    if (part.empty() || part.size() > 9 || part.find_first_not_of("0123456789") != std::string::npos) {
+      throw UsageError("--shard: '" + text + "' is not I/N (shard I of N, 0 <= I < N)");
+    }
+    return std::stoll(part);
+  };
+  if (slash == std::string::npos) throw UsageError("--shard: '" + text + "' is not I/N (shard I of N, 0 <= I < N)");
+  const long long i = number(text.substr(0, slash));
+  const long long n = number(text.substr(slash + 1));
+  if (n < 1 || n > max_shards) throw UsageError(fmt::format("--shard: N = {} must be in [1, {}]", n, max_shards));
+  if (i >= n) throw UsageError(fmt::format("--shard: I = {} must be below N = {} (shards are 0 .. N-1)", i, n));
+  spec.index = static_cast<int>(i);
+  spec.count = static_cast<int>(n);
+  if (split == "samples") spec.split = ShardSplit::samples;
+  else if (split == "tiles") spec.split = ShardSplit::tiles;
+  else throw UsageError("--split: '" + split + "' is not one of samples | tiles");
+  return spec;
+}
+
+// render --shard: one part, written atomically, or skipped when --out already holds this very part (resume).
+// An interrupted shard writes nothing (a part is all of its samples or absent).
+void run_shard(const RenderCliOptions& o, const Scene& scene, RenderOptions ro) {
+  if (o.mode != "reference") throw UsageError("--shard: only the path tracer (--mode reference) renders in parts");
+  if (o.aov) throw UsageError("--shard: AOVs are not split; render them in one piece (without --shard)");
+  if (!o.png.empty()) throw UsageError("--shard: a part has no PNG; give --png to shadelab merge");
+  const std::filesystem::path out(o.out);
+  check_outputs(scene_inputs(scene), {{"--out", out}});
+  const int spp = ro.spp > 0 ? ro.spp : scene.settings.spp;
+  const int max_depth = ro.max_depth > 0 ? ro.max_depth : scene.settings.max_depth;
+  ShardInfo info = make_shard_info(scene, ro, spp, max_depth);
+  const std::string label = fmt::format("shard {}/{}", info.index, info.count);
+  std::error_code ec;
+  if (std::filesystem::exists(out, ec)) {
+    auto old = read_shard_info(out);
+    if (old && same_shard(*old, info) && read_shard_sums(out, *old)) {
+      if (o.json) {
+        print_json({{"scene", scene.source}, {"shard", info.index}, {"count", info.count}, {"split", info.split},
+                    {"outputs", nlohmann::json::array({out.string()})}, {"skipped", true}, {"nonfinite_samples", old->nonfinite_samples}});
+      } else {
+        fmt::print("{}: {} already in {}, skipped\n", scene.source, label, out.string());
+      }
+      std::fflush(stdout);
+      if (old->nonfinite_samples > 0) std::exit(1);
+      return;
+    }
+    warn("'" + out.string() + "' exists but is not " + label + " of this render (" +
+         (old ? std::string("another shard or render") : old.error().message) + "): rendering it again");
+  }
+  ProgressBar bar(label, o.progress);
+  ro.progress = [&](double f, int) { bar.update(f); };
+  g_interrupted.store(false);
+  g_signal.store(0);
+  ro.cancel = &g_interrupted;
+  auto handler = std::make_unique<InterruptHandler>();  // (std::optional trips GCC 12 -Wmaybe-uninitialized here)
+  auto result = render_scene(scene, ro);
+  bar.finish();
+  if (!result) throw UsageError(scene.source + ": " + result.error().message);
+  const RenderStats& st = result->stats;
+  if (st.cancelled || g_interrupted.load()) {
+    std::cerr << "shadelab: " << label << " interrupted: nothing written (run it again to render the part)\n";
+    std::exit(128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT));
+  }
+  info.nonfinite_samples = st.nonfinite_samples;
+  unwrap(write_shard(out, info, *result));
+  handler.reset();
+  if (o.json) {
+    print_json({{"scene", scene.source}, {"shard", info.index}, {"count", info.count}, {"split", info.split},
+                {"outputs", nlohmann::json::array({out.string()})}, {"skipped", false}, {"sample_begin", info.sample_begin},
+                {"sample_end", info.sample_end}, {"nonfinite_samples", st.nonfinite_samples}, {"seconds", st.seconds},
+                {"render_seconds", st.render_seconds}, {"rays", st.rays}});
+  } else {
+    fmt::print("{}: {} ({} split, samples [{}, {})) in {:.2f} s\nwrote {}\n", scene.source, label, info.split,
+               info.sample_begin, info.sample_end, st.seconds, out.string());
+  }
+  std::fflush(stdout);
+  if (st.nonfinite_samples > 0) {
+    std::cerr << "shadelab: " << scene.source << ": " << st.nonfinite_samples
+              << " samples were NaN or infinite (NaN pixels in the part); the render is wrong\n";
+    std::exit(1);
+  }
+}
 
 void run_render(const RenderCliOptions& o) {
   // The scene format's ranges (docs/scene-format.md), so an option never accepts what a scene refuses.
@@ -82,7 +175,7 @@ void run_render(const RenderCliOptions& o) {
   if (o.threads_given && o.threads < 0) throw UsageError(fmt::format("--threads: {} must be >= 0", o.threads));
   check_range("--threads", o.threads_given, o.threads, 0, max_render_threads);
   if (!std::isfinite(o.exposure)) throw UsageError("--exposure: must be finite");
-  Scene scene = o.scene.empty() ? default_scene() : unwrap(load_scene(o.scene));
+  Scene scene = o.scene.empty() ? built_in_scene() : unwrap(load_scene(o.scene));
   if (o.seed_given) scene.settings.seed = parse_seed("--seed", o.seed);
   RenderOptions ro;
   ro.spp = o.spp_given ? o.spp : -1;
@@ -93,6 +186,9 @@ void run_render(const RenderCliOptions& o) {
   else if (o.sampling == "brdf") ro.mode = SamplingMode::brdf;
   else if (o.sampling == "light") ro.mode = SamplingMode::light;
   else throw UsageError("--sampling: '" + o.sampling + "' is not one of mis | brdf | light");
+  if (o.sampler == "sobol") ro.sampler = SamplerKind::owen_sobol;
+  else if (o.sampler == "independent") ro.sampler = SamplerKind::independent;
+  else throw UsageError("--sampler: '" + o.sampler + "' is not one of sobol | independent");
   if (o.mode != "reference" && o.mode != "game") throw UsageError("--mode: '" + o.mode + "' is not one of reference | game");
   GameOptions go;
   if (o.ambient == "sh9") go.diffuse = GameAmbient::sh9;
@@ -116,6 +212,16 @@ void run_render(const RenderCliOptions& o) {
   }
   go.threads = ro.threads;
   if (o.spp_given) go.spp = o.spp;
+  if (!o.shard.empty() || o.split_given) {
+    if (o.shard.empty()) throw UsageError("--split applies to --shard I/N");
+    ro.shard = parse_shard(o.shard, o.split);
+    const std::filesystem::path part(o.out);
+    std::string part_ext = part.extension().string();
+    for (auto& c : part_ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (part_ext != ".exr") throw UsageError("--out: a part is written as .exr, got '" + o.out + "'");
+    run_shard(o, scene, ro);
+    return;
+  }
   const std::filesystem::path exr(o.out);
   std::string ext = exr.extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -136,6 +242,7 @@ void run_render(const RenderCliOptions& o) {
   film.exposure_stops = o.exposure;
   film.curve = o.filmic ? ToneCurve::filmic : ToneCurve::clamp;
   film.aovs = o.aov;
+  work_begins();
 
   ProgressBar bar("render", o.progress);
   ro.progress = [&](double f, int) { bar.update(f); };
@@ -157,7 +264,7 @@ void run_render(const RenderCliOptions& o) {
     print_json({{"scene", scene.source}, {"mode", o.mode}, {"outputs", files}, {"width", scene.camera.width},
                 {"height", scene.camera.height}, {"spp", st.spp_done}, {"interrupted", interrupted},
                 {"nonfinite_samples", st.nonfinite_samples},
-                {"seconds", st.seconds}, {"rays", st.rays},
+                {"seconds", st.seconds}, {"render_seconds", st.render_seconds}, {"rays", st.rays},
                 {"samples_per_second", pixels * st.spp_done / std::max(1e-9, st.seconds)},
                 {"rays_per_second", static_cast<double>(st.rays) / std::max(1e-9, st.seconds)}});
   } else {
@@ -195,6 +302,7 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_flag("--aov", o->aov, "also write albedo, normal and depth EXRs");
   sub->add_option("--mode", o->mode, "reference (the path tracer) or game (the game shading equation)")->capture_default_str();
   sub->add_option("--sampling", o->sampling, "reference mode: mis, brdf or light sampling")->capture_default_str();
+  sub->add_option("--sampler", o->sampler, "reference mode: sobol (Owen-scrambled, stratified) or independent (plain Monte Carlo)")->capture_default_str();
   sub->add_option("--ambient", o->ambient, "game mode: diffuse ambient from sh9, irradiance (cube map) or none")->capture_default_str();
   sub->add_flag("--no-shadows", o->no_shadows, "game mode: no shadow rays for punctual lights");
   sub->add_flag("--no-specular-ambient", o->no_specular_ambient, "game mode: no prefiltered specular");
@@ -203,11 +311,15 @@ void add_render_command(CLI::App& app, Command& command) {
                 "game mode: add every directional light to the SH9 ambient (D3DX-style) instead of shading it per pixel");
   sub->add_flag("--json", o->json, "machine-readable summary");
   sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");
+  sub->add_option("--shard", o->shard, "I/N: render part I of N (0 <= I < N) into --out, for shadelab merge (docs/scale-out.md)");
+  sub->add_option("--split", o->split, "with --shard: samples (a range of every pixel's samples) or tiles (every N-th 16 x 16 tile)")
+      ->capture_default_str();
   sub->callback([o, sub, &command] {
     o->spp_given = sub->count("--spp") > 0;
     o->threads_given = sub->count("--threads") > 0;
     o->max_depth_given = sub->count("--max-depth") > 0;
     o->seed_given = sub->count("--seed") > 0;
+    o->split_given = sub->count("--split") > 0;
     command.run = [o] { run_render(*o); };
   });
 }

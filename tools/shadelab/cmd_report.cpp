@@ -31,7 +31,6 @@
 #include "shadelab/render/accel.h"
 #include "shadelab/render/film.h"
 #include "shadelab/render/game_renderer.h"
-#include "shadelab/scene/default_scene.h"
 #include "shadelab/scene/scene_json.h"
 
 namespace shadelab::cli {
@@ -132,8 +131,12 @@ MaskedFigures masked(const Image& game, const Image& ref, const std::vector<int>
       se += (a - b) * (a - b);
       rel += (a - b) * (a - b) / (b * b + default_relative_mse_epsilon);  // as compare_images (metrics.h)
     }
-    lg += luminance({game.data[3 * i], game.data[3 * i + 1], game.data[3 * i + 2]});
-    lr += luminance({ref.data[3 * i], ref.data[3 * i + 1], ref.data[3 * i + 2]});
+    const auto pixel = [i](const Image& img) {
+      return Rgb{static_cast<double>(img.data[3 * i]), static_cast<double>(img.data[3 * i + 1]),
+                 static_cast<double>(img.data[3 * i + 2])};
+    };
+    lg += luminance(pixel(game));
+    lr += luminance(pixel(ref));
   }
   if (m.pixels > 0) {
     m.rmse = std::sqrt(se / (3.0 * m.pixels));
@@ -145,7 +148,7 @@ MaskedFigures masked(const Image& game, const Image& ref, const std::vector<int>
 
 void run_report(const ReportOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  Scene scene = o.scene.empty() ? default_scene() : unwrap(load_scene(o.scene));
+  Scene scene = o.scene.empty() ? built_in_scene() : unwrap(load_scene(o.scene));
   if (o.spp < 1) throw UsageError(fmt::format("--spp: {} must be >= 1", o.spp));
   if (o.width < 0 || o.width > 4096) throw UsageError(fmt::format("--width: {} is out of range [16, 4096]", o.width));
   if (o.width > 0) {
@@ -163,6 +166,7 @@ void run_report(const ReportOptions& o) {
     }
     check_outputs(scene_inputs(scene), outputs);
   }
+  work_begins();
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw UsageError("--out: cannot create the folder '" + o.out + "': " + ec.message());

@@ -1,4 +1,5 @@
 // shadelab shader MODEL [--param NAME=VALUE ...] --lang glsl|essl|hlsl [--out FILE] [--entry NAME] [--uniforms]
+//                [--tables-out FILE]
 // shadelab shader verify MODEL [--param ...] --lang glsl|essl|hlsl [--source FILE] [--cases N] [--json]
 //                       [--entry NAME] [--uniforms] [--device all|vulkan|webgl2] [--tolerance X] [--seed N]
 // Exports a model as a shader function file, or verifies a shader (exported or the user's) on real drivers
@@ -22,6 +23,7 @@ struct ShaderOptions {
   std::vector<std::string> params;
   std::string lang;
   std::string out;
+  std::string tables_out;
   std::string entry;
   bool uniforms = false;
   std::string source;
@@ -60,6 +62,7 @@ void run_verify(const ShaderOptions& o, const std::string& model) {
   else if (o.device == "vulkan") v.device = shaders::VerifyDevice::vulkan;
   else if (o.device == "webgl2") v.device = shaders::VerifyDevice::webgl2;
   else throw UsageError("--device: unknown device '" + o.device + "' (devices: all, vulkan, webgl2)");
+  work_begins();
   const shaders::VerifyReport r = unwrap(shaders::verify_shader(v));
   const shaders::DeviceReport& c = r.combined;
   if (o.json) {
@@ -97,6 +100,13 @@ void run_export(const ShaderOptions& o, const std::string& model) {
   e.uniforms = o.uniforms;
   e.command = command_line(o, model);
   const shaders::ShaderExport ex = unwrap(shaders::export_model(model, parse_assignments(o.params), e));
+  if (!o.tables_out.empty() && ex.tables_data.empty()) {
+    throw UsageError("--tables-out: the model '" + model + "' with these parameters reads no tables");
+  }
+  work_begins();
+  if (!o.tables_out.empty()) {
+    unwrap(write_file_atomically(o.tables_out, std::vector<char>(ex.tables_data.begin(), ex.tables_data.end())));
+  }
   if (o.out.empty()) {
     std::cout << ex.text;
   } else {
@@ -113,6 +123,9 @@ void add_shader_command(CLI::App& app, Command& command) {
   sub->add_option("--param", o->params, "NAME=VALUE, repeatable (see brdf list)");
   sub->add_option("--lang", o->lang, "glsl (4.50), essl (GLSL ES 3.00) or hlsl (SM 5)")->required();
   sub->add_option("--out", o->out, "export: write the file here instead of stdout");
+  sub->add_option("--tables-out", o->tables_out,
+                  "export: write the bytes of the GGX energy tables' uniform block (std140 vec4, little-endian float) "
+                  "here, for models that read them");
   sub->add_option("--entry", o->entry, "the f_r function's name (default brdf_MODEL, '-' as '_')");
   sub->add_flag("--uniforms", o->uniforms, "parameters in a uniform block (std140) instead of baked constants");
   sub->add_option("--source", o->source, "verify: the user's shader file, defining the entry");
@@ -131,6 +144,7 @@ void add_shader_command(CLI::App& app, Command& command) {
       const std::string& model = o->args.back();
       if (verify) {
         if (sub->count("--out") > 0) throw UsageError("--out: only for shader export (shader MODEL)");
+        if (sub->count("--tables-out") > 0) throw UsageError("--tables-out: only for shader export (shader MODEL)");
         run_verify(*o, model);
       } else {
         for (const char* flag : {"--source", "--cases", "--json", "--device", "--tolerance", "--seed"}) {

@@ -197,6 +197,7 @@ void run_sheet(const SheetOptions& o) {
     }
   }
 
+  work_begins();
   Environment env;
   if (!o.hdri.empty()) {
     ReadInfo info;

@@ -33,6 +33,7 @@ void run_zoo(const std::vector<double>& exponents, bool json) {
   for (double n : exponents) {
     if (!std::isfinite(n) || n < 0.0) throw UsageError(fmt::format("--n: {} must be a finite number >= 0", n));
   }
+  work_begins();
   nlohmann::json rows = nlohmann::json::array();
   for (double n : exponents) {
     const auto table = unwrap(zoo_table(n));

@@ -187,7 +187,9 @@ Result<std::string> kernel_section(const std::vector<std::string>& names, Lang l
     auto text = translate(file.text, lang, file.name);
     if (!text) return text.error();
     const std::string guard = "SHADELAB_KERNEL_" + upper_identifier(file.name);
-    out += "#ifndef " + guard + "\n#define " + guard + "\n// ---- kernels/" + file.name + "\n" + *text;
+    out += "#ifndef " + guard + "\n#define " + guard + "\n// ---- kernels/" + file.name + "\n";
+    if (file.name == kGgxEnergyTableFile) out += ggx_energy_block_declaration(lang);
+    out += *text;
     if (!out.empty() && out.back() != '\n') out += "\n";
     out += "#endif  // " + guard + "\n\n";
   }
@@ -226,10 +228,17 @@ Result<ShaderExport> export_model(std::string_view model, const ParamAssignments
   ex.params_type = *ptype;
   ex.block_name = ex.entry + "_block";
 
-  auto kernels = kernel_section({k + "_prepare", k + "_eval", "punctual_game", "punctual_radiometric", "sh9_irradiance",
-                                 "sh9_irradiance_game", "sh9_irradiance_game_wrapped"},
-                                lang);
+  const std::vector<std::string> names = {k + "_prepare",          k + "_eval",         "punctual_game",
+                                           "punctual_radiometric",   "sh9_irradiance",    "sh9_irradiance_game",
+                                           "sh9_irradiance_game_wrapped"};
+  auto kernels = kernel_section(names, lang);
   if (!kernels) return kernels.error();
+  for (std::size_t f : lib.closure(names)) {
+    if (lib.files()[f].name == kGgxEnergyTableFile) {
+      ex.tables_block = kGgxEnergyBlock;
+      ex.tables_data = ggx_energy_block_data();
+    }
+  }
 
   std::string& s = ex.text;
   s += "// shadelab: the BRDF model '" + info->name + "' for " + lang_display_name(lang) + ", " + info->summary + " (" +
@@ -247,6 +256,12 @@ Result<ShaderExport> export_model(std::string_view model, const ParamAssignments
       "on a real driver. The kernels below are shadelab's src/shadelab/kernels/*.sl, the text the C++ evaluates, "
       "translated token by token (docs/shaders.md).");
   if (lang == Lang::essl) s += "// GLSL ES: use with `precision highp float;` (mediump is too coarse for f_r).\n";
+  if (!ex.tables_block.empty()) {
+    s += comment_block("Tables: this model reads the GGX energy tables from the uniform block " + ex.tables_block +
+                       " (declared with the kernels below); fill it once with the " +
+                       std::to_string(ex.tables_data.size()) + " bytes `shadelab shader " + info->name +
+                       " --lang " + lang_name(lang) + " --tables-out FILE` writes (the same for every model).");
+  }
   s += "//\n// Entry points:\n";
   s += "//   " + v3 + " " + ex.entry + "(" + v3 + " wi, " + v3 + " wo)  f_r\n";
   s += "//   " + v3 + " " + ex.entry + "_punctual_game(" + v3 + " wi, " + v3 + " wo, " + v3 +

@@ -45,6 +45,10 @@ struct ShaderExport {
   // modes, so a caller can run the uniform export with exactly the values the baked one has.
   std::vector<std::uint8_t> uniform_data;
   std::vector<UniformField> uniform_layout;
+  // Models with Kulla-Conty or Filament energy compensation: the uniform block of the GGX energy tables
+  // (kernel_library.h, kGgxEnergyBlock) and its bytes (std140, little-endian float); both empty otherwise.
+  std::string tables_block;
+  std::vector<std::uint8_t> tables_data;
 };
 
 // brdf_<model> with '-' -> '_': brdf_cook_torrance.

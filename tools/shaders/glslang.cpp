@@ -12,12 +12,14 @@ std::string compute_harness(Lang lang, const std::string& code, const std::strin
   std::string s;
   if (lang == Lang::hlsl) {
     s += "[[vk::binding(1)]] StructuredBuffer<float4> shadelab_in;\n"
-         "[[vk::binding(2)]] RWStructuredBuffer<float4> shadelab_out;\n";
+         "[[vk::binding(2)]] RWStructuredBuffer<float4> shadelab_out;\n"
+         "#define SHADELAB_TABLES_LAYOUT [[vk::binding(3)]]\n";
   } else {
     s += lang == Lang::glsl ? "#version 450\n" : "#version 310 es\nprecision highp float;\nprecision highp int;\n";
     s += "layout(local_size_x = 64) in;\n"
          "layout(std430, binding = 1) readonly buffer ShadelabIn { vec4 shadelab_in[]; };\n"
-         "layout(std430, binding = 2) writeonly buffer ShadelabOut { vec4 shadelab_out[]; };\n";
+         "layout(std430, binding = 2) writeonly buffer ShadelabOut { vec4 shadelab_out[]; };\n"
+         "#define SHADELAB_TABLES_LAYOUT layout(std140, binding = 3)\n";
   }
   s += "#line 1\n" + code;
   if (!code.empty() && code.back() != '\n') s += "\n";

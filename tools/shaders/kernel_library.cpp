@@ -1,6 +1,7 @@
 #include "kernel_library.h"
 
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 #include "shadelab/kernels/kernels.h"
@@ -165,25 +166,52 @@ Result<KernelLibrary> KernelLibrary::parse(std::vector<KernelFile> files) {
 
 KernelFile ggx_energy_table_file() {
   // The C++ fetches (kernels.h) read the tables tables.cpp computes by quadrature at first use; a shader reads
-  // the same numbers from constant arrays. 10 decimals: below float's resolution on [0, 1].
-  const auto table = [](const char* name, const char* count, int n, const double* v) {
-    std::string t = "const int " + std::string(count) + " = " + std::to_string(n) + ";\nconst real " + name + "[" +
-                    count + "] = {";
-    for (int i = 0; i < n; ++i) {
-      char b[32];
-      std::snprintf(b, sizeof b, "%.10f", v[i]);
-      t += (i == 0 ? "" : (i % 8 == 0 ? ",\n  " : ", ")) + std::string(b);
-    }
-    return t + "};\n";
-  };
+  // the same numbers from the uniform block the exporter declares (ggx_energy_block_declaration). A table of
+  // constants in the code would be simpler to use, but lavapipe lowers every dynamically indexed read of a
+  // 2048-entry constant or global array on its own: the Kulla-Conty GGX pipeline (some 160 reads) then takes
+  // minutes to build, against a second from a uniform block.
   std::string text =
       "// ggx_energy_tables.sl, written by the shader exporter (tools/shaders/kernel_library.cpp): the texel\n"
-      "// fetches of ggx_energy.sl over constant arrays of the numbers the C++ computes (kernels/tables.cpp).\n";
-  text += table("GGX_ENERGY_TEXELS", "GGX_ENERGY_TEXEL_COUNT", 2 * 32 * 32, kernel::ggx_energy_texels());
-  text += table("GGX_ENERGY_AVERAGE_TEXELS", "GGX_ENERGY_AVERAGE_COUNT", 2 * 32, kernel::ggx_energy_average_texels());
-  text += "inline real ggx_energy_texel(int g, int row, int col) {\n  return GGX_ENERGY_TEXELS[(g * 32 + row) * 32 + col];\n}\n";
-  text += "inline real ggx_energy_average_texel(int g, int row) {\n  return GGX_ENERGY_AVERAGE_TEXELS[g * 32 + row];\n}\n";
-  return {"ggx_energy_tables.sl", text};
+      "// fetches of ggx_energy.sl from the uniform block " +
+      std::string(kGgxEnergyBlock) + " (vec4 " + kGgxEnergyMember + "[" + std::to_string(kGgxEnergyVec4s) +
+      "]: the " + std::to_string(kGgxEnergyTexels) + " texels of E(mu, alpha), then the " +
+      std::to_string(kGgxEnergyAverages) + " averages E_avg(alpha), four to a vec4).\n";
+  text += "inline real ggx_energy_texel(int g, int row, int col) {\n  int i = (g * 32 + row) * 32 + col;\n  return " +
+          std::string(kGgxEnergyMember) + "[i / 4][i % 4];\n}\n";
+  text += "inline real ggx_energy_average_texel(int g, int row) {\n  int i = " + std::to_string(kGgxEnergyTexels) +
+          " + g * 32 + row;\n  return " + std::string(kGgxEnergyMember) + "[i / 4][i % 4];\n}\n";
+  return {kGgxEnergyTableFile, text};
+}
+
+std::vector<std::uint8_t> ggx_energy_block_data() {
+  std::vector<float> v;
+  v.reserve(4 * kGgxEnergyVec4s);
+  for (int i = 0; i < kGgxEnergyTexels; ++i) v.push_back(static_cast<float>(kernel::ggx_energy_texels()[i]));
+  for (int i = 0; i < kGgxEnergyAverages; ++i) v.push_back(static_cast<float>(kernel::ggx_energy_average_texels()[i]));
+  v.resize(4 * kGgxEnergyVec4s, 0.0f);
+  std::vector<std::uint8_t> bytes(v.size() * sizeof(float));
+  std::memcpy(bytes.data(), v.data(), bytes.size());  // little-endian, as every GPU API uploads it
+  return bytes;
+}
+
+std::string ggx_energy_block_declaration(Lang lang) {
+  const std::string n = std::to_string(kGgxEnergyVec4s);
+  std::string s =
+      "// The GGX energy tables as a uniform block the application fills once: " + n +
+      " vec4 (std140, " + std::to_string(16 * kGgxEnergyVec4s) +
+      " bytes), the bytes `shadelab shader MODEL --tables-out FILE` writes (docs/shaders.md).\n";
+  if (lang == Lang::hlsl) {
+    s += "// Define SHADELAB_TABLES_LAYOUT before this file to bind it, e.g. [[vk::binding(3)]] (or add a register).\n"
+         "#ifndef SHADELAB_TABLES_LAYOUT\n#define SHADELAB_TABLES_LAYOUT\n#endif\n"
+         "SHADELAB_TABLES_LAYOUT cbuffer " + std::string(kGgxEnergyBlock) + " {\n  float4 " + kGgxEnergyMember + "[" + n +
+         "];\n};\n";
+  } else {
+    s += "// Define SHADELAB_TABLES_LAYOUT before this file to add a binding, e.g. layout(std140, binding = 3).\n"
+         "#ifndef SHADELAB_TABLES_LAYOUT\n#define SHADELAB_TABLES_LAYOUT layout(std140)\n#endif\n"
+         "SHADELAB_TABLES_LAYOUT uniform " + std::string(kGgxEnergyBlock) + " {\n  vec4 " + kGgxEnergyMember + "[" + n +
+         "];\n};\n";
+  }
+  return s;
 }
 
 const KernelLibrary& KernelLibrary::embedded() {

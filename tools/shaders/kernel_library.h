@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <set>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "shadelab/core/error.h"
+#include "translate.h"
 
 namespace shadelab::shaders {
 
@@ -26,9 +28,21 @@ struct KernelFile {
 // and the exporter's own shader-only support kernels (erf.sl: GLSL and HLSL have no erf).
 std::span<const KernelFile> embedded_kernel_files();
 std::span<const KernelFile> embedded_support_files();
-// The GGX energy tables (kernels/tables.h) as a kernel file: constant arrays and the two texel fetches the C++
-// defines in kernels.h (ggx_energy_texel, ggx_energy_average_texel). embedded() puts it after the support files.
+// The GGX energy tables (kernels/tables.h) in a shader: a uniform block of vec4 (kGgxEnergyBlock, member
+// kGgxEnergyMember) holding the E(mu, alpha) texels and then the E_avg(alpha) averages, in float. The kernel
+// file holds the two texel fetches the C++ defines in kernels.h (ggx_energy_texel, ggx_energy_average_texel),
+// reading that block; embedded() puts it after the support files. The exporter declares the block
+// (ggx_energy_block_declaration) in any shader whose kernels use the file, and the application uploads
+// ggx_energy_block_data().
+inline constexpr const char* kGgxEnergyBlock = "ShadelabGgxEnergy";
+inline constexpr const char* kGgxEnergyMember = "shadelab_ggx_energy";
+inline constexpr int kGgxEnergyTexels = 2 * 32 * 32;
+inline constexpr int kGgxEnergyAverages = 2 * 32;
+inline constexpr int kGgxEnergyVec4s = (kGgxEnergyTexels + kGgxEnergyAverages + 3) / 4;
+inline constexpr const char* kGgxEnergyTableFile = "ggx_energy_tables.sl";
 KernelFile ggx_energy_table_file();
+std::vector<std::uint8_t> ggx_energy_block_data();
+std::string ggx_energy_block_declaration(Lang lang);
 
 enum class FieldType { real, integer, rgb, vec3, boolean };
 

@@ -244,12 +244,12 @@ Result<VerifyReport> verify_shader(const VerifyOptions& o) {
     if (!spirv) return spirv.error();
     auto dev = VulkanDevice::open();
     if (!dev) return dev.error();
-    auto out = (*dev)->run(*spirv, pairs, uniform);
+    auto out = (*dev)->run(*spirv, pairs, uniform, ex->tables_data);
     if (!out) return out.error();
     report.devices.push_back(compare_outputs((*dev)->name(), pairs, *out, ref));
   }
   if (o.lang == Lang::essl && o.device != VerifyDevice::vulkan) {
-    auto web = run_webgl(code, expression, pairs, uniform, ex->block_name, display);
+    auto web = run_webgl(code, expression, pairs, uniform, ex->block_name, display, ex->tables_data);
     if (!web) return web.error();
     report.devices.push_back(compare_outputs("Chromium WebGL 2: " + web->renderer, pairs, web->output, ref));
   }

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "kernel_library.h"
 #include "process.h"
 
 namespace shadelab::shaders {
@@ -124,6 +125,13 @@ std::string page(const std::string& programs_json, const std::string& wi_b64, co
           const ubo = gl.createBuffer(); gl.bindBuffer(gl.UNIFORM_BUFFER, ubo); gl.bufferData(gl.UNIFORM_BUFFER, data, gl.STATIC_DRAW);
           gl.uniformBlockBinding(prog, index, 0); gl.bindBufferBase(gl.UNIFORM_BUFFER, 0, ubo);
         }
+        const tbytes = bytes(p.tables);
+        const tindex = tbytes.length > 0 ? gl.getUniformBlockIndex(prog, ')" + std::string(kGgxEnergyBlock) + R"(') : gl.INVALID_INDEX;
+        if (tindex !== gl.INVALID_INDEX) {  // a shader of the user's (--source) may not read the tables
+          const index = tindex;
+          const tbo = gl.createBuffer(); gl.bindBuffer(gl.UNIFORM_BUFFER, tbo); gl.bufferData(gl.UNIFORM_BUFFER, tbytes, gl.STATIC_DRAW);
+          gl.uniformBlockBinding(prog, index, 1); gl.bindBufferBase(gl.UNIFORM_BUFFER, 1, tbo);
+        }
         gl.viewport(0, 0, W, H); gl.disable(gl.BLEND); gl.disable(gl.DITHER);
         gl.drawArrays(gl.TRIANGLES, 0, 3);
         const result = new Float32Array(W * H * 4);
@@ -196,7 +204,8 @@ Result<std::vector<Result<WebglResult>>> run_webgl_batch(const std::vector<Webgl
             "  vec3 wi = texelFetch(shadelab_wi_tex, shadelab_p, 0).xyz;\n"
             "  vec3 wo = texelFetch(shadelab_wo_tex, shadelab_p, 0).xyz;\n"
             "  shadelab_color = vec4(" + p.expression + ", 0.0);\n}\n";
-    list.push_back({{"frag", b64_text(frag)}, {"uniform", base64(p.uniform.data(), p.uniform.size())}, {"block", p.block_name}});
+    list.push_back({{"frag", b64_text(frag)}, {"uniform", base64(p.uniform.data(), p.uniform.size())}, {"block", p.block_name},
+                    {"tables", base64(p.tables.data(), p.tables.size())}});
   }
 
   TempDir dir("shadelab-webgl");
@@ -272,8 +281,8 @@ Result<std::vector<Result<WebglResult>>> run_webgl_batch(const std::vector<Webgl
 
 Result<WebglResult> run_webgl(const std::string& code, const std::string& expression, const std::vector<float>& input,
                               const std::vector<std::uint8_t>& uniform, const std::string& block_name,
-                              const std::string& display_name) {
-  auto batch = run_webgl_batch({{code, expression, uniform, block_name, display_name}}, input);
+                              const std::string& display_name, const std::vector<std::uint8_t>& tables) {
+  auto batch = run_webgl_batch({{code, expression, uniform, block_name, display_name, tables}}, input);
   if (!batch) return batch.error();
   return std::move(batch->front());
 }

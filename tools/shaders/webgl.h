@@ -27,6 +27,7 @@ struct WebglProgram {
   std::vector<std::uint8_t> uniform;  // non-empty: the std140 bytes of uniform block `block_name`
   std::string block_name;
   std::string display_name;  // names the code in compiler errors
+  std::vector<std::uint8_t> tables;  // non-empty: the bytes of the GGX energy tables' block (ShadelabGgxEnergy)
 };
 
 // Runs several programs over the same cases in one browser start (a start costs seconds); one result each.
@@ -34,10 +35,11 @@ Result<std::vector<Result<WebglResult>>> run_webgl_batch(const std::vector<Webgl
                                                          const std::vector<float>& input);
 
 // Evaluates `expression` (in terms of vec3 wi, wo) over the cases (8 floats each: wi.xyz, 0, wo.xyz, 0). With
-// a non-empty `uniform`, the bytes fill the uniform block `block_name` (std140). Errors: the shader compiler's
+// a non-empty `uniform`, the bytes fill the uniform block `block_name` (std140), and a non-empty `tables` the
+// GGX energy tables' block. Errors: the shader compiler's
 // first error line ("DISPLAY:LINE: ..."), or why the browser could not run it.
 Result<WebglResult> run_webgl(const std::string& code, const std::string& expression, const std::vector<float>& input,
                               const std::vector<std::uint8_t>& uniform, const std::string& block_name,
-                              const std::string& display_name);
+                              const std::string& display_name, const std::vector<std::uint8_t>& tables = {});
 
 }  // namespace shadelab::shaders

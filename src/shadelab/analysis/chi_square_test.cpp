@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "shadelab/analysis/test_brdfs.h"
@@ -61,7 +62,7 @@ TEST(IncompleteGamma, ChiSquareCriticalValues) {
 TEST(IncompleteGamma, EdgesAndSymmetry) {
   EXPECT_EQ(regularized_gamma_p(3.0, 0.0), 0.0);
   EXPECT_EQ(regularized_gamma_q(3.0, 0.0), 1.0);
-  EXPECT_EQ(regularized_gamma_q(3.0, INFINITY), 0.0);
+  EXPECT_EQ(regularized_gamma_q(3.0, std::numeric_limits<double>::infinity()), 0.0);
   EXPECT_TRUE(std::isnan(regularized_gamma_p(0.0, 1.0)));
   EXPECT_TRUE(std::isnan(regularized_gamma_q(-1.0, 1.0)));
   for (double a : {0.3, 2.5, 17.5, 399.5}) {

@@ -14,6 +14,10 @@
 
 namespace shadelab {
 
+// The Phong exponent (R.L)^n of a Blinn-Phong lobe (N.H)^n: n / 4 (the half vector turns half as fast as L,
+// so the two lobes have the same angular width near their peak; envmap/prefilter.h).
+constexpr double phong_exponent_from_blinn_phong(double n_blinn) { return n_blinn / 4.0; }
+
 struct GlossEncoding {
   double n_black = 2.0;     // exponent stored as gloss 0
   double n_white = 8192.0;  // exponent stored as gloss 1

@@ -1,7 +1,9 @@
 #include "shadelab/brdf/params.h"
 
 #include <charconv>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -43,8 +45,19 @@ Result<std::vector<double>> parse_numbers(std::string_view text) {
     double v = 0.0;
     const auto* first = part.data();
     const auto* last = part.data() + part.size();
+#if defined(__cpp_lib_to_chars)
     const auto [ptr, ec] = std::from_chars(first, last, v);
     if (ec != std::errc() || ptr != last) return make_error("'" + part + "' is not a number");
+#else
+    // libc++ before 17 (the explorer's WebAssembly build, Debian's emscripten) has no floating-point
+    // from_chars: strtod on the whole part, refusing what from_chars refuses and strtod would take (leading
+    // space or '+', hexadecimal).
+    const bool refused = std::isspace(static_cast<unsigned char>(part.front())) != 0 || part.front() == '+' ||
+                         part.find_first_of("xX") != std::string::npos;
+    char* end = nullptr;
+    v = refused ? 0.0 : std::strtod(first, &end);  // overflow gives +-HUGE_VAL, refused as not finite below
+    if (refused || end != last) return make_error("'" + part + "' is not a number");
+#endif
     if (!std::isfinite(v)) return make_error("'" + part + "' is not finite");
     out.push_back(v);
   }

@@ -27,7 +27,12 @@ class Result {
   T& value() & { return std::get<0>(m_data); }
   T&& value() && { return std::get<0>(std::move(m_data)); }
   const T& operator*() const& { return value(); }
+  // Non-const access, so that std::move(*result) moves: with only the const overload it copied, and a
+  // scene holding a 1 GiB texture briefly held two (MemoryBound.SceneImagesStayWithinTheSceneBudget).
+  T& operator*() & { return value(); }
+  T&& operator*() && { return std::move(*this).value(); }
   const T* operator->() const { return &value(); }
+  T* operator->() { return &value(); }
   const Error& error() const { return std::get<1>(m_data); }
 
  private:

@@ -32,6 +32,7 @@
 
 #include <vector>
 
+#include "shadelab/brdf/gloss.h"
 #include "shadelab/core/error.h"
 #include "shadelab/envmap/cubemap.h"
 #include "shadelab/envmap/irradiance.h"
@@ -50,7 +51,7 @@ struct PrefilterOptions {
 };
 
 double prefilter_exponent(int level, int mip_count, double gloss_scale, double gloss_bias);
-constexpr double phong_exponent_from_blinn_phong(double n_blinn) { return n_blinn / 4.0; }
+// phong_exponent_from_blinn_phong (n / 4) is in brdf/gloss.h.
 
 struct PrefilteredCube {
   std::vector<CubeMap> levels;

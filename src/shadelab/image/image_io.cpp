@@ -127,12 +127,11 @@ constexpr std::uint64_t strip_bytes = 16ULL << 20;              // a strip buffe
 std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1ULL << 20) - 1) >> 20) + " MiB"; }
 
 // Refuses a read whose allocations (the image and the decoder's buffers) would exceed the budget.
-Result<bool> check_budget(const fs::path& path, std::uint64_t bytes, const std::string& what) {
-  if (bytes <= image_read_budget_bytes) {
+Result<bool> check_budget(const fs::path& path, std::uint64_t bytes, const std::string& what, std::uint64_t budget) {
+  if (bytes <= budget) {
     return true;
   }
-  return read_error(path, what + " needs " + mib(bytes) + ", more than the image memory budget of " +
-                              mib(image_read_budget_bytes));
+  return read_error(path, what + " needs " + mib(bytes) + ", more than the image memory budget of " + mib(budget));
 }
 
 // OpenEXR allocates line-offset tables and tile buffers from the header before any pixel is read: bound the
@@ -177,7 +176,7 @@ void copy_strip(const std::vector<float>& strip, const Imath::Box2i& data_window
 // Luminance/chroma files (Y, RY, BY, subsampled chroma) hold half data; RgbaInputFile converts them to RGB.
 // Read in strips of the overlapping rows, so the buffers follow the data window and a strip budget.
 Result<Image> read_exr_luminance_chroma(const fs::path& path, const Imath::Box2i& display_window,
-                                        ReadInfo& info) {
+                                        ReadInfo& info, std::uint64_t budget) {
   Imf::RgbaInputFile file(path.c_str());
   const Imath::Box2i data_window = file.dataWindow();
   const Imath::Box2i keep = overlap(display_window, data_window);
@@ -187,7 +186,7 @@ Result<Image> read_exr_luminance_chroma(const fs::path& path, const Imath::Box2i
   const std::uint64_t image_bytes =
       static_cast<std::uint64_t>(box_width(display_window)) * box_height(display_window) * bytes_per_pixel;
   if (auto ok = check_budget(path, image_bytes + w * static_cast<std::uint64_t>(per_strip) * (sizeof(Imf::Rgba) + bytes_per_pixel),
-                             "reading it");
+                             "reading it", budget);
       !ok) {
     return ok.error();
   }
@@ -228,7 +227,7 @@ const char* sample_type_name(Imf::PixelType type) {
   }
 }
 
-Result<Image> read_exr(const fs::path& path, ReadInfo& info) {
+Result<Image> read_exr(const fs::path& path, ReadInfo& info, std::uint64_t budget) {
   limit_openexr();
   Imf::InputFile file(path.c_str());
   const Imf::Header& header = file.header();
@@ -265,7 +264,7 @@ Result<Image> read_exr(const fs::path& path, ReadInfo& info) {
     return read_error(path, "no R, G, B or Y channel (channels: " + (names.empty() ? "none" : names) + ")");
   }
   if (!rgb && (channels.findChannel("RY") != nullptr || channels.findChannel("BY") != nullptr)) {
-    return read_exr_luminance_chroma(path, display_window, info);
+    return read_exr_luminance_chroma(path, display_window, info, budget);
   }
   const Imf::Channel* used[3] = {r, g, b};
   if (!rgb) {
@@ -289,7 +288,8 @@ Result<Image> read_exr(const fs::path& path, ReadInfo& info) {
   const int per_strip = direct ? 0 : strip_rows(data_width * bytes_per_pixel, rows);
   const std::uint64_t image_bytes = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * bytes_per_pixel;
   if (auto ok = check_budget(path, image_bytes + data_width * static_cast<std::uint64_t>(per_strip) * bytes_per_pixel,
-                             "reading its " + std::to_string(width) + " x " + std::to_string(height) + " display window");
+                             "reading its " + std::to_string(width) + " x " + std::to_string(height) + " display window",
+                             budget);
       !ok) {
     return ok.error();
   }
@@ -458,13 +458,13 @@ Result<bool> check_stb_size(const fs::path& path, const std::vector<unsigned cha
 }
 
 // Radiance RGBE through our own decoder (rgbe.h says why not stb_image).
-Result<Image> read_hdr(const fs::path& path, ReadInfo& info) {
+Result<Image> read_hdr(const fs::path& path, ReadInfo& info, std::uint64_t budget) {
   auto bytes = read_bytes(path);
   if (!bytes) {
     return bytes.error();
   }
   // The image is 12 bytes a pixel and the decoder's scan-line buffer one row: the budget bounds the pixels.
-  const long long budget_pixels = static_cast<long long>(image_read_budget_bytes / bytes_per_pixel);
+  const long long budget_pixels = static_cast<long long>(budget / bytes_per_pixel);
   Result<Image> image = decode_rgbe(bytes->data(), bytes->size(), std::min(max_image_pixels, budget_pixels));
   if (!image) {
     return read_error(path, image.error().message);
@@ -596,7 +596,7 @@ Result<bool> check_palette_indices(const fs::path& path, const std::vector<unsig
   return true;
 }
 
-Result<Image> read_png(const fs::path& path, ReadInfo& info) {
+Result<Image> read_png(const fs::path& path, ReadInfo& info, std::uint64_t budget) {
   auto bytes = read_bytes(path);
   if (!bytes) {
     return bytes.error();
@@ -622,7 +622,7 @@ Result<Image> read_png(const fs::path& path, ReadInfo& info) {
   // The image, stb's samples and its inflated scan lines (about as large as the samples).
   const auto pixels_count = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
   if (auto ok = check_budget(path, pixels_count * (bytes_per_pixel + 2ULL * static_cast<std::uint64_t>(n) * (sixteen ? 2 : 1)),
-                             "decoding its " + std::to_string(w) + " x " + std::to_string(h) + " pixels");
+                             "decoding its " + std::to_string(w) + " x " + std::to_string(h) + " pixels", budget);
       !ok) {
     return ok.error();
   }
@@ -806,7 +806,10 @@ Result<bool> write_atomically(const fs::path& target, const std::vector<char>& b
 
 }  // namespace
 
-Result<Image> read_image(const fs::path& path, ReadInfo* info) {
+Result<Image> read_image(const fs::path& path, ReadInfo* info) { return read_image(path, info, image_read_budget_bytes); }
+
+Result<Image> read_image(const fs::path& path, ReadInfo* info, std::uint64_t budget_bytes) {
+  const std::uint64_t budget = std::min(budget_bytes, image_read_budget_bytes);
   const Format format = format_of(path);
   if (format == Format::unknown) {
     return read_error(path, unknown_extension_reason());
@@ -833,15 +836,15 @@ Result<Image> read_image(const fs::path& path, ReadInfo* info) {
     switch (format) {
       case Format::exr:
         local.format = "exr";
-        image = read_exr(path, local);
+        image = read_exr(path, local, budget);
         break;
       case Format::hdr:
         local.format = "hdr";
-        image = read_hdr(path, local);
+        image = read_hdr(path, local, budget);
         break;
       case Format::png:
         local.format = "png";
-        image = read_png(path, local);
+        image = read_png(path, local, budget);
         break;
       case Format::unknown:
         break;
@@ -854,6 +857,8 @@ Result<Image> read_image(const fs::path& path, ReadInfo* info) {
       *info = std::move(local);
     }
     return image;
+  } catch (const std::bad_alloc&) {
+    return read_error(path, "out of memory while decoding (the image is within the budget; the machine's memory is not)");
   } catch (const std::exception& e) {
     // OpenEXR reports corrupt and truncated files by throwing (Iex::BaseExc derives from std::exception).
     return read_error(path, e.what());

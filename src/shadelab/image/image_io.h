@@ -61,6 +61,9 @@ struct ReadInfo {
 
 // Reads an image; `info`, when given, is filled on success.
 Result<Image> read_image(const std::filesystem::path& path, ReadInfo* info = nullptr);
+// The same with a smaller memory budget (at most image_read_budget_bytes): a scene gives each image what is
+// left of its own budget (scene/limits.h, max_scene_image_bytes).
+Result<Image> read_image(const std::filesystem::path& path, ReadInfo* info, std::uint64_t budget_bytes);
 
 enum class ExrPixelType {
   float32,  // exact: 32-bit IEEE float per channel

@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "shadelab/kernels/kernels.h"
+
 namespace shadelab {
 
 // IEC 61966-2-1:1999, section 4.7 (encoding) and 5.2 (decoding); the published constants.
@@ -31,24 +33,14 @@ inline double srgb_to_linear(double v) {
   return std::pow((v + srgb_offset) / srgb_scale, srgb_exponent);
 }
 
-// Linear -> encoded sRGB value. IEC 61966-2-1: V = 12.92 L for L <= 0.0031308, else 1.055 L^(1/2.4) - 0.055.
-inline double linear_to_srgb(double l) {
-  if (l <= srgb_encode_breakpoint) {
-    return l * srgb_linear_slope;
-  }
-  return srgb_scale * std::pow(l, 1.0 / srgb_exponent) - srgb_offset;
-}
+// Linear -> encoded sRGB value. IEC 61966-2-1: V = 12.92 L for L <= 0.0031308, else 1.055 L^(1/2.4) - 0.055
+// (the kernel kernels/display.sl, shared with the explorer's WebGL sphere).
+inline double linear_to_srgb(double l) { return kernel::linear_to_srgb(l); }
 
-// Linear -> 8-bit sRGB code: round(255 * linear_to_srgb(clamp(l, 0, 1))); NaN gives 0.
+// Linear -> 8-bit sRGB code: round(255 * linear_to_srgb(clamp(l, 0, 1))); NaN gives 0 (kernels/display.sl).
 inline std::uint8_t linear_to_srgb8(double l) {
-  if (!(l > 0.0)) {  // also catches NaN
-    return 0;
-  }
-  if (l >= 1.0) {
-    return 255;
-  }
-  // Round half up; the argument is in [0, 255], so the cast is exact.
-  return static_cast<std::uint8_t>(std::floor(255.0 * linear_to_srgb(l) + 0.5));
+  // srgb8_code is an integer in [0, 255], so the cast is exact.
+  return static_cast<std::uint8_t>(kernel::srgb8_code(l));
 }
 
 // srgb_to_linear(k / 255) for the 256 codes of an 8-bit channel.

@@ -13,3 +13,14 @@ inline rgb punctual_game(rgb f, rgb colour, real n_dot_l) {
 inline rgb punctual_radiometric(rgb f, rgb e_perp, real n_dot_l) {
   return f * e_perp * max(n_dot_l, 0.0);
 }
+
+// A point light of intensity I (W/sr) at squared distance d2 > 0 from the surface: E_perp = I / d2 (the
+// inverse-square law); the caller handles a surface point at the light itself.
+inline rgb point_light_irradiance(rgb intensity, real distance_squared) {
+  return intensity / distance_squared;
+}
+
+// The game colour that delivers an irradiance E_perp: c = E_perp / pi (docs/conventions.md).
+inline rgb game_colour_from_irradiance(rgb e_perp) {
+  return e_perp * SL_INV_PI;
+}

@@ -51,5 +51,7 @@ inline real ggx_energy_average_texel(int g, int row) {
 #include "shadelab/kernels/filament.sl"
 #include "shadelab/kernels/game_shading.sl"
 #include "shadelab/kernels/sh9.sl"
+#include "shadelab/kernels/game_ambient.sl"
+#include "shadelab/kernels/display.sl"
 // clang-format on
 }  // namespace shadelab::kernel

@@ -12,7 +12,7 @@
 //   conversions int(x) (truncation) and real(i).
 // - operators: + - * / on vec3 and rgb component-wise and with real scalars, unary minus; [] component
 //   access; .x .y .z on vec3 and .r .g .b on rgb; no swizzles.
-// - functions: sqrt exp exp2 log pow abs floor sin cos acos min max clamp mix atan2 erf, dot length normalize
+// - functions: sqrt exp exp2 log log2 pow abs floor sin cos acos min max clamp mix atan2 erf, dot length normalize
 //   cross on vec3; user functions are marked `inline` (removed in shaders), take parameters by value, have no
 //   out-parameters, defaults, overloads, recursion or pointers.
 // - literals: always with a decimal point for reals (GLSL ES has no implicit int -> float conversion);
@@ -91,6 +91,7 @@ using std::exp;
 using std::exp2;
 using std::floor;
 using std::log;
+using std::log2;
 using std::pow;
 using std::sin;
 using std::sqrt;

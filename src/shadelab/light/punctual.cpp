@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "shadelab/kernels/kernels.h"
+
 namespace shadelab {
 
 LightIncidence incident(const DirectionalLight& light, const Vec3&) {
@@ -14,7 +16,7 @@ LightIncidence incident(const PointLight& light, const Vec3& p) {
   const double r2 = dot(d, d);
   const double r = std::sqrt(r2);
   if (r == 0.0) return {{0.0, 0.0, 1.0}, 0.0, {}};  // at the light itself: no defined direction, no light
-  return {d / r, r, light.intensity / r2};           // inverse-square law: E_perp = I / r^2
+  return {d / r, r, kernel::point_light_irradiance(light.intensity, r2)};  // E_perp = I / r^2 (game_shading.sl)
 }
 
 double spot_falloff(double cos_angle, double cos_inner, double cos_outer) {

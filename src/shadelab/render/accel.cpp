@@ -58,6 +58,8 @@ Accelerator::Accelerator(const Scene& scene) : m_scene(scene) {
     for (const auto& s : scene.spheres) {
       c.push_back(s.center);
       r.push_back(s.radius);
+      const Material& m = scene.materials[static_cast<std::size_t>(s.material)];
+      m_sphere_needs_uv.push_back(m.textured() || m.normal_texture >= 0);
     }
     spheres(c, r, ShapeKind::sphere);
   }
@@ -170,9 +172,45 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(m_rtc, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  const GeometryRef& ref = m_geometries[rh.hit.geomID];
-  const auto prim = static_cast<int>(rh.hit.primID);
-  hit.t = static_cast<double>(rh.ray.tfar);
+  refine(ray, rh.hit.geomID, rh.hit.primID, rh.ray.tfar, rh.hit.u, rh.hit.v, hit);
+  return true;
+}
+
+void Accelerator::intersect8(const Ray* rays, int count, Hit* hits, bool* found) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(32) int valid[8];
+  alignas(32) RTCRayHit8 rh;
+  for (int i = 0; i < 8; ++i) {
+    valid[i] = i < count ? -1 : 0;
+    const Ray& r = rays[i < count ? i : 0];
+    rh.ray.org_x[i] = f(r.origin.x);
+    rh.ray.org_y[i] = f(r.origin.y);
+    rh.ray.org_z[i] = f(r.origin.z);
+    rh.ray.dir_x[i] = f(r.direction.x);
+    rh.ray.dir_y[i] = f(r.direction.y);
+    rh.ray.dir_z[i] = f(r.direction.z);
+    rh.ray.tnear[i] = 0.0f;
+    rh.ray.tfar[i] = std::isfinite(r.t_max) ? f(r.t_max) : std::numeric_limits<float>::infinity();
+    rh.ray.time[i] = 0.0f;
+    rh.ray.mask[i] = 0xFFFFFFFFu;
+    rh.ray.id[i] = 0;
+    rh.ray.flags[i] = 0;
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect8(valid, m_rtc, &ctx, &rh);
+  for (int i = 0; i < count; ++i) {
+    found[i] = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+    if (found[i]) refine(rays[i], rh.hit.geomID[i], rh.hit.primID[i], rh.ray.tfar[i], rh.hit.u[i], rh.hit.v[i], hits[i]);
+  }
+}
+
+void Accelerator::refine(const Ray& ray, unsigned geom_id, unsigned prim_id, float tfar, float bu, float bv, Hit& hit) const {
+  const GeometryRef& ref = m_geometries[geom_id];
+  const auto prim = static_cast<int>(prim_id);
+  hit.t = static_cast<double>(tfar);
   hit.position = ray.origin + ray.direction * hit.t;
   hit.kind = ref.kind;
   hit.primitive = prim;
@@ -198,8 +236,12 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
       hit.position = center + n * radius;  // refined onto the sphere in double
       hit.geometric_normal = n;
       hit.shading_normal = n;
-      // Lat-long uv about +Y, as the environment mapping.
-      hit.uv = {0.5 + std::atan2(n.z, n.x) * inv_two_pi, std::acos(std::clamp(n.y, -1.0, 1.0)) * inv_pi};
+      // Lat-long uv about +Y, as the environment mapping; only textured spheres need it (two inverse trig calls).
+      if (ref.kind == ShapeKind::sphere && m_sphere_needs_uv[static_cast<std::size_t>(prim)]) {
+        hit.uv = {0.5 + std::atan2(n.z, n.x) * inv_two_pi, std::acos(std::clamp(n.y, -1.0, 1.0)) * inv_pi};
+      } else {
+        hit.uv = {};
+      }
       const Vec3 t{-n.z, 0.0, n.x};
       hit.dpdu = length(t) > 1e-12 ? normalize(t) : Vec3{1.0, 0.0, 0.0};
       break;
@@ -235,8 +277,8 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
       const Vec3 e1 = mesh.positions[i1] - mesh.positions[i0];
       const Vec3 e2 = mesh.positions[i2] - mesh.positions[i0];
       hit.geometric_normal = normalize(cross(e1, e2));
-      const double b1 = static_cast<double>(rh.hit.u);
-      const double b2 = static_cast<double>(rh.hit.v);
+      const double b1 = static_cast<double>(bu);
+      const double b2 = static_cast<double>(bv);
       const double b0 = 1.0 - b1 - b2;
       hit.position = mesh.positions[i0] * b0 + mesh.positions[i1] * b1 + mesh.positions[i2] * b2;
       if (!mesh.normals.empty()) {
@@ -255,7 +297,6 @@ bool Accelerator::intersect(const Ray& ray, Hit& hit) const {
       break;
     }
   }
-  return true;
 }
 
 bool Accelerator::occluded(const Ray& ray) const {

@@ -15,7 +15,8 @@ namespace {
 // The built-in sky's gradient: zenith -> horizon with a smooth blend, ground below.
 Rgb sky_gradient(const SkyModel& s, const Vec3& w) {
   if (w.y < 0.0) return s.ground;
-  const double t = std::pow(1.0 - w.y, 4.0);  // horizon brightening toward the horizon
+  const double h = (1.0 - w.y) * (1.0 - w.y);
+  const double t = h * h;  // (1 - y)^4: horizon brightening toward the horizon
   return s.zenith * (1.0 - t) + s.horizon * t;
 }
 
@@ -53,6 +54,10 @@ EnvironmentLight::EnvironmentLight(const Scene& scene) : m_scene(scene) {
   }
   m_width = proposal.width;
   m_height = proposal.height;
+  // A constant proposal (a uniform environment) is sampled uniformly over the sphere: the same density the
+  // table would give, without the table look-ups.
+  m_constant = true;
+  for (std::size_t i = 3; i < proposal.data.size(); ++i) m_constant = m_constant && proposal.data[i] == proposal.data[i % 3];
   std::vector<double> weights(static_cast<std::size_t>(m_width) * static_cast<std::size_t>(m_height));
   double mean = 0.0;
   for (int y = 0; y < m_height; ++y) {
@@ -105,6 +110,7 @@ Rgb EnvironmentLight::radiance(const Vec3& w) const {
 
 double EnvironmentLight::pdf(const Vec3& w) const {
   if (!m_active) return 0.0;
+  if (m_constant) return m_has_sun ? mix_sun(w, inv_four_pi) : inv_four_pi;
   const Vec3 w_map = m_inverse_rotation.apply(w);
   const Vec2 uv = latlong_uv(w_map);
   const double sin_theta = std::sqrt(std::max(0.0, 1.0 - w_map.y * w_map.y));
@@ -113,11 +119,12 @@ double EnvironmentLight::pdf(const Vec3& w) const {
     const double u = uv.x >= 1.0 ? 0.0 : uv.x;
     p = m_distribution->pdf({u, std::min(uv.y, std::nextafter(1.0, 0.0))}) / (2.0 * pi * pi * sin_theta);
   }
-  if (m_has_sun) {
-    p = (1.0 - m_sun_probability) * p +
-        m_sun_probability * (dot(w, m_scene.environment.sky.sun_direction) >= m_sun_cos ? 1.0 / (two_pi * (1.0 - m_sun_cos)) : 0.0);
-  }
-  return p;
+  return m_has_sun ? mix_sun(w, p) : p;
+}
+
+double EnvironmentLight::mix_sun(const Vec3& w, double p_map) const {
+  return (1.0 - m_sun_probability) * p_map +
+         m_sun_probability * (dot(w, m_scene.environment.sky.sun_direction) >= m_sun_cos ? 1.0 / (two_pi * (1.0 - m_sun_cos)) : 0.0);
 }
 
 EnvironmentLight::Sample EnvironmentLight::sample(Vec2 u, double u_select) const {
@@ -126,6 +133,8 @@ EnvironmentLight::Sample EnvironmentLight::sample(Vec2 u, double u_select) const
   if (m_has_sun && u_select < m_sun_probability) {
     const Frame f = Frame::from_normal(m_scene.environment.sky.sun_direction);
     s.wi = f.to_world(sample_spherical_cap(u, m_sun_cos));
+  } else if (m_constant) {
+    s.wi = sample_uniform_sphere(u);
   } else {
     const auto d = m_distribution->sample(u);
     s.wi = m_rotation.apply(latlong_direction(d.p.x, d.p.y));

@@ -1,6 +1,8 @@
 // shadelab environment light: the radiance arriving from infinitely far away, as a function of direction,
 // and an importance sampler for it.
 //
+// A constant proposal (a uniform environment) is sampled uniformly over the sphere instead (pdf 1 / (4 pi)).
+//
 // radiance(w) = environment (lat-long image with rotation and scale, a uniform value, or the built-in sky's
 // gradient) + the sun disk of the sky + every hemisphere light. The image is looked up bilinearly.
 // Sampling is a mixture: the sun cap (uniform in its solid angle, probability proportional to its power),
@@ -38,12 +40,14 @@ class EnvironmentLight {
 
  private:
   Rgb base_radiance(const Vec3& w) const;  // without the sun
+  double mix_sun(const Vec3& w, double p_map) const;  // the mixture density, given the map's
   const Scene& m_scene;
   bool m_active = false;
   Mat3 m_rotation;          // map -> world
   Mat3 m_inverse_rotation;  // world -> map
   std::optional<Distribution2D> m_distribution;
   int m_width = 0, m_height = 0;
+  bool m_constant = false;  // the proposal is constant: uniform sphere sampling, pdf 1 / (4 pi)
   bool m_has_sun = false;
   double m_sun_cos = 1.0;        // cosine of the sun's angular radius
   Rgb m_sun_radiance;            // E / (pi sin^2(alpha)), uniform over the cap

@@ -3,21 +3,19 @@
 #include <algorithm>
 
 #include "shadelab/image/image_io.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
-double filmic_curve(double x) {
-  x = std::max(0.0, x);
-  // Narkowicz 2015, ACES filmic fit
-  return std::clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-}
+// Narkowicz 2015, ACES filmic fit (the kernel kernels/display.sl, shared with the explorer's WebGL sphere).
+double filmic_curve(double x) { return kernel::tone_filmic(x); }
 
 Image tonemap(const Image& hdr, double exposure_stops, ToneCurve curve) {
   Image out(hdr.width, hdr.height);
-  const double scale = std::exp2(exposure_stops);
+  const double scale = kernel::exposure_scale(exposure_stops);  // 2^stops (kernels/display.sl)
   for (std::size_t i = 0; i < hdr.data.size(); ++i) {
     const double v = static_cast<double>(hdr.data[i]) * scale;
-    out.data[i] = static_cast<float>(curve == ToneCurve::filmic ? filmic_curve(v) : std::clamp(v, 0.0, 1.0));
+    out.data[i] = static_cast<float>(curve == ToneCurve::filmic ? filmic_curve(v) : kernel::tone_clamp(v));
   }
   return out;
 }

@@ -15,8 +15,7 @@
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/envmap/sh.h"
 #include "shadelab/kernels/kernels.h"
-#include "shadelab/brdf/microfacet.h"
-#include "shadelab/brdf/wrapped_diffuse.h"
+#include "shadelab/brdf/game_lobe.h"
 #include "shadelab/render/accel.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/materials.h"
@@ -27,46 +26,6 @@
 namespace shadelab {
 
 namespace {
-
-constexpr int kAlbedoBins = 32;
-
-// The prefiltered level's Phong exponent for a GGX-like lobe of perceptual roughness r (alpha = r^2).
-double phong_exponent_from_alpha(double perceptual_roughness) {
-  const double alpha = perceptual_roughness * perceptual_roughness;
-  return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(alpha));
-}
-
-// The Phong exponent whose lobe matches a material's specular lobe, for the prefiltered-map level:
-// Blinn-Phong-like lobes (N.H)^n have n/4; Beckmann roughness m and Ward's alpha convert by n = 2/m^2 - 2.
-double phong_exponent(const std::string& model, const ParamValues& p) {
-  if (model == "phong" || model == "phong-modified") return p.scalar("n");
-  if (model == "blinn-phong" || model == "blinn-phong-modified" || model == "minimalist-cook-torrance") {
-    return phong_exponent_from_blinn_phong(p.scalar("n"));
-  }
-  if (model == "cook-torrance") {
-    const double n = p.is_set("n") ? p.scalar("n") : exponent_from_beckmann_m(p.scalar("m"));
-    return phong_exponent_from_blinn_phong(n);
-  }
-  if (model == "ward") return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(p.scalar("alpha")));
-  if (model == "ward-anisotropic") {
-    const double a = 0.5 * (p.scalar("alpha_x") + p.scalar("alpha_y"));
-    return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(a));
-  }
-  if (model == "lafortune") return p.lobes("lobes").front()[3];
-  // GGX's alpha is a roughness like Beckmann's m (both the RMS slope's scale; Walter et al. 2007 section 5.2).
-  if (model == "ggx") {
-    double ax = p.scalar("alpha");
-    double ay = ax;
-    if (p.is_set("roughness")) ax = ay = p.scalar("roughness") * p.scalar("roughness");
-    if (p.is_set("alpha_x")) {
-      ax = p.scalar("alpha_x");
-      ay = p.scalar("alpha_y");
-    }
-    return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(std::sqrt(ax * ay)));
-  }
-  if (model == "filament") return phong_exponent_from_alpha(p.scalar("perceptual_roughness"));
-  return 0.0;  // no specular lobe
-}
 
 class GameShader {
  public:
@@ -80,7 +39,7 @@ class GameShader {
       const auto* d = std::get_if<DirectionalLight>(&l);
       if (d != nullptr && (d->game_sh || m_options.directional_in_sh) && m_options.diffuse == GameAmbient::sh9) {
         // D3DX-style: the delta pi c delta(w - d) projected and scaled by 16/17 (sh.h), c = E_perp / pi.
-        m_sh_lights += sh9_directional_light(d->to_light, d->irradiance * inv_pi, true);
+        m_sh_lights += sh9_directional_light(d->to_light, kernel::game_colour_from_irradiance(d->irradiance), true);
         m_has_sh_lights = true;
         continue;
       }
@@ -97,51 +56,28 @@ class GameShader {
     }
     // The baked environment: SH9, irradiance cube and prefiltered specular chain.
     if (m_env.has_light()) {
-      const int n = m_options.environment_size;
-      CubeMap cube(n);
-      for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < n; ++y)
-          for (int x = 0; x < n; ++x) cube.set(f, x, y, m_env.radiance_without_sun(texel_direction(f, x, y, n)));
-      m_sh = project_sh9(cube);
-      if (m_options.diffuse == GameAmbient::irradiance_map) m_irradiance = irradiance_cube(cube, 32, RadianceUnits::game);
-      if (m_options.specular_ambient) {
-        PrefilterOptions po;
-        po.size = m_options.specular_size;
-        auto chain = prefilter_specular(cube, po);
-        if (!chain) return chain.error();
-        m_specular = std::move(chain).value();
-      }
+      auto baked = bake_game_environment(m_env, m_options);
+      if (!baked) return baked.error();
+      m_sh = baked->sh;
+      m_irradiance = std::move(baked->irradiance);
+      m_specular = std::move(baked->specular);
     }
     m_sh += m_sh_lights;  // the environment's coefficients (zero without one) and the D3DX-style lights
-    // Per material: Phong exponent and the specular lobe's directional albedo over cos(theta_o).
+    // Per material: Phong exponent, wrap and the specular lobe's directional albedo over cos(theta_o).
     for (std::size_t i = 0; i < m_scene.materials.size(); ++i) {
       const Material& m = m_scene.materials[i];
-      MaterialInfo info;
+      GameLobe info;
       if (!m.model.empty()) {
         const ModelInfo* model = find_brdf_model(m.model);
         auto values = parse_params(model->name, model->params, m.params);
         if (!values) return values.error();
-        info.exponent = phong_exponent(m.model, *values);
-        info.blinn_like = m.model.find("blinn") != std::string::npos || m.model == "minimalist-cook-torrance" ||
-                          m.model == "cook-torrance";
-        if (m.metallic_roughness_texture >= 0) info.roughness_factor = values->scalar("perceptual_roughness");
         BrdfPtr holder;
         const Brdf* f = m_materials.brdf(static_cast<int>(i), {0.5, 0.5}, holder);
-        if (const auto* w = dynamic_cast<const WrappedDiffuse*>(f)) info.wrap = w->wrap();
-        for (int b = 0; b < kAlbedoBins; ++b) {
-          const double c = (b + 0.5) / kAlbedoBins;
-          const Vec3 wo{std::sqrt(1.0 - c * c), 0.0, c};
-          Pcg32 rng(1234, static_cast<std::uint64_t>(b));
-          Rgb sum;
-          const int samples = 4096;
-          for (int s = 0; s < samples; ++s) {
-            sum += f->sample(wo, {rng.next_double(), rng.next_double()}, rng.next_double()).weight;
-          }
-          const Rgb spec = sum / samples - f->diffuse_albedo();
-          info.specular_albedo[static_cast<std::size_t>(b)] = {std::max(0.0, spec.r), std::max(0.0, spec.g), std::max(0.0, spec.b)};
-        }
+        info = game_lobe(m.model, *values, *f);
+        if (m.metallic_roughness_texture >= 0) info.roughness_factor = values->scalar("perceptual_roughness");
       }
       m_info.push_back(info);
+      m_albedo_tables.push_back(game_specular_albedo_table(info));
     }
     return true;
   }
@@ -161,7 +97,7 @@ class GameShader {
     const Brdf* f = m_materials.brdf(hit.material, hit.uv, holder);
     if (f == nullptr) return l;
     const Vec3 wo = sf.frame.to_local(wo_world);
-    const MaterialInfo& info = m_info[static_cast<std::size_t>(hit.material)];
+    const GameLobe& info = m_info[static_cast<std::size_t>(hit.material)];
     if (m_options.punctual) {
       for (const auto& light : m_punctual) {
         const LightIncidence in = std::visit(
@@ -182,7 +118,7 @@ class GameShader {
                            std::isfinite(in.distance) ? in.distance * (1.0 - 2e-3) : in.distance};
           if (m_accel.occluded(shadow)) continue;
         }
-        const Rgb colour_game = in.irradiance_perp * inv_pi;  // the game unit: E_perp = pi x colour
+        const Rgb colour_game = kernel::game_colour_from_irradiance(in.irradiance_perp);  // E_perp = pi x colour
         // The game shading equation L = pi f c cos, the kernel kernels/game_shading.sl; drop_pi is the bug of
         // forgetting the pi: the game colour used as if it were the irradiance.
         const Rgb fr = f->eval(wi, wo);
@@ -199,7 +135,7 @@ class GameShader {
         } else {
           e_over_pi = sh9_evaluate(m_sh, n, info.wrap > 0.0 ? wrapped_band_factors_over_pi(info.wrap) : cosine_band_factors_over_pi);
         }
-        l += f->diffuse_albedo() * e_over_pi;
+        l += kernel::game_diffuse_ambient(f->diffuse_albedo(), e_over_pi);
       }
     }
     if (m_env.has_light()) {
@@ -218,33 +154,22 @@ class GameShader {
           const double g = sample_texture(m_scene.textures[static_cast<std::size_t>(m.metallic_roughness_texture)], uv).g;
           n_phong = phong_exponent_from_alpha(std::clamp(info.roughness_factor * g, 0.01, 1.0));
         }
-        const Vec3 r = reflect(wo_world, n);
-        const double c = std::clamp(wo.z, 0.0, 1.0);
-        const double pos = std::clamp(c * kAlbedoBins - 0.5, 0.0, kAlbedoBins - 1.0);
-        const auto b0 = static_cast<std::size_t>(pos);
-        const std::size_t b1 = std::min<std::size_t>(b0 + 1, kAlbedoBins - 1);
-        const double t = pos - static_cast<double>(b0);
-        const Rgb rho_s = info.specular_albedo[b0] * (1.0 - t) + info.specular_albedo[b1] * t;
-        l += rho_s * prefiltered(r, n_phong);
+        // The specular ambient of kernels/game_ambient.sl: rho_s(cos theta_o) x prefiltered(R, n).
+        const Vec3 r = kernel::game_reflect(wo_world, n);
+        const Rgb rho_s = kernel::game_specular_albedo(m_albedo_tables[static_cast<std::size_t>(hit.material)], wo.z);
+        l += kernel::game_specular_ambient(rho_s, prefiltered(r, n_phong));
       }
     }
     return l;
   }
 
  private:
-  struct MaterialInfo {
-    double exponent = 0.0;
-    bool blinn_like = false;
-    double wrap = 0.0;
-    double roughness_factor = 1.0;  // perceptual roughness that a metallic-roughness texture multiplies
-    std::array<Rgb, kAlbedoBins> specular_albedo{};
-  };
-
-  // The prefiltered radiance for a Phong exponent: level (M-1)(1 - (log2 n - bias)/scale), linear between
-  // levels (prefilter.h's gloss mapping inverted).
+  // The prefiltered radiance for a Phong exponent: the chain's level for it (kernels/game_ambient.sl, the
+  // gloss mapping of prefilter.h inverted), linear between levels.
   Rgb prefiltered(const Vec3& r, double n) const {
     const auto levels = static_cast<int>(m_specular.levels.size());
-    const double level = std::clamp((levels - 1) * (1.0 - (std::log2(std::max(n, 1e-9)) - 1.0) / 10.0), 0.0, levels - 1.0);
+    const PrefilterOptions po;
+    const double level = kernel::game_prefiltered_level(n, levels, po.gloss_scale, po.gloss_bias);
     const int i0 = static_cast<int>(level);
     const int i1 = std::min(i0 + 1, levels - 1);
     const double t = level - i0;
@@ -263,10 +188,37 @@ class GameShader {
   bool m_has_sh_lights = false;
   CubeMap m_irradiance;
   PrefilteredCube m_specular;
-  std::vector<MaterialInfo> m_info;
+  std::vector<GameLobe> m_info;
+  std::vector<kernel::GameSpecularAlbedo> m_albedo_tables;
 };
 
 }  // namespace
+
+Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const GameOptions& options) {
+  GameEnvironment out;
+  if (!env.has_light()) return out;
+  out.has_light = true;
+  const int n = options.environment_size;
+  CubeMap cube(n);
+  for (int f = 0; f < 6; ++f)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) cube.set(f, x, y, env.radiance_without_sun(texel_direction(f, x, y, n)));
+  out.sh = project_sh9(cube);
+  if (options.diffuse == GameAmbient::irradiance_map) out.irradiance = irradiance_cube(cube, 32, RadianceUnits::game);
+  if (options.specular_ambient) {
+    PrefilterOptions po;
+    po.size = options.specular_size;
+    auto chain = prefilter_specular(cube, po);
+    if (!chain) return chain.error();
+    out.specular = std::move(chain).value();
+  }
+  return out;
+}
+
+Result<GameEnvironment> bake_game_environment(const Scene& scene, const GameOptions& options) {
+  const EnvironmentLight env(scene);
+  return bake_game_environment(env, options);
+}
 
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();

@@ -13,6 +13,10 @@
 //     material's lobe width and the specular lobe's directional albedo rho_s (a per-material table over
 //     cos(theta_o), from the BRDF's own sampler, fixed seed);
 //   emission of the surface seen; the environment seen directly.
+// The formulas are the kernels shaders share (kernels/game_shading.sl: the punctual term and the inverse
+// square law; game_ambient.sl: the ambient terms, the mirror direction, the albedo table lookup and the
+// prefiltered level; sh9.sl), and the per-material numbers come from brdf/game_lobe.h, so the browser
+// explorer's sphere (web/) shades with the same text.
 // Directional lights marked game_sh (or all of them with directional_in_sh) are not shaded per pixel: each is
 // added to the SH9 coefficients as D3DXSHEvalDirectionalLight does (sh9_directional_light, scaled so a white
 // Lambert surface facing a light of game colour c shows exactly c), so they light the diffuse ambient only,
@@ -24,6 +28,9 @@
 // that the agreement test can fail.
 #pragma once
 
+#include "shadelab/envmap/prefilter.h"
+#include "shadelab/envmap/sh.h"
+#include "shadelab/render/env_light.h"
 #include "shadelab/render/path_tracer.h"
 
 namespace shadelab {
@@ -44,6 +51,21 @@ struct GameOptions {
 };
 
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options = {});
+
+// The environment as game shading bakes it: the radiance without the sky's sun (env_light.h), point-sampled
+// at the texel centres of a cube of options.environment_size; its SH9 projection (radiance units: evaluate
+// with sh9_irradiance_game for E/pi); the irradiance cube in game units (GameAmbient::irradiance_map only);
+// and the prefiltered specular chain of options.specular_size (options.specular_ambient only). has_light is
+// false, and the rest empty, for a scene with neither an environment nor hemisphere lights. The browser
+// explorer (web/) bakes its HDRIs with it, so its sphere is lit by exactly what `render --mode game` uses.
+struct GameEnvironment {
+  bool has_light = false;
+  Sh9 sh;
+  CubeMap irradiance;
+  PrefilteredCube specular;
+};
+Result<GameEnvironment> bake_game_environment(const Scene& scene, const GameOptions& options = {});
+Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const GameOptions& options = {});
 
 // The game-shaded radiance along one camera ray (for tests).
 Result<Rgb> game_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, const GameOptions& options = {});

@@ -1,6 +1,6 @@
 #include "shadelab/render/path_tracer.h"
 
-#include <tbb/blocked_range2d.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "shadelab/core/constants.h"
@@ -16,8 +17,8 @@
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/materials.h"
 #include "shadelab/render/threads.h"
+#include "shadelab/sampling/owen.h"
 #include "shadelab/scene/limits.h"
-#include "shadelab/sampling/rng.h"
 #include "shadelab/sampling/warp.h"
 
 namespace shadelab {
@@ -85,7 +86,15 @@ class Integrator {
       : m_scene(scene), m_mode(mode), m_max_depth(max_depth), m_accel(scene), m_env(scene) {}
 
   Result<bool> prepare();
-  Rgb li(Ray ray, Pcg32& rng, Counters& counters, FirstHit* first) const;
+  // The radiance along the camera ray `ray`, whose closest hit `camera_hit` (when found) was already traced.
+  Rgb li(Ray ray, bool camera_found, const Hit& camera_hit, const PixelSampler& sampler, Counters& counters,
+         FirstHit* first) const;
+  Rgb li(const Ray& ray, const PixelSampler& sampler, Counters& counters, FirstHit* first) const {
+    Hit hit;
+    ++counters.rays;
+    const bool found = m_accel.intersect(ray, hit);
+    return li(ray, found, hit, sampler, counters, first);
+  }
   const Accelerator& accel() const { return m_accel; }
 
  private:
@@ -93,6 +102,7 @@ class Integrator {
   double light_pdf(const LightRef& l, const Vec3& p, const Vec3& wi, const Hit* hit) const;
   Rgb emitted(const Hit& hit, const Vec3& wo_world) const;
   int light_of_hit(const Hit& hit) const;
+  bool roulette(int vertex) const { return m_scene.settings.rr_depth > 0 && vertex >= m_scene.settings.rr_depth; }
 
   const Scene& m_scene;
   SamplingMode m_mode;
@@ -313,17 +323,21 @@ double Integrator::light_pdf(const LightRef& l, const Vec3& p, const Vec3& wi, c
   return 0.0;
 }
 
-Rgb Integrator::li(Ray ray, Pcg32& rng, Counters& counters, FirstHit* first) const {
+Rgb Integrator::li(Ray ray, bool camera_found, const Hit& camera_hit, const PixelSampler& sampler, Counters& counters,
+                   FirstHit* first) const {
   Rgb radiance;
   Rgb beta = Rgb::gray(1.0);
   double prev_brdf_pdf = 0.0;  // density of the BRDF sample that produced `ray` (0 for the camera ray)
   Vec3 prev_position;
   const double n_lights = static_cast<double>(m_lights.size());
+  Hit hit = camera_hit;
+  bool found = camera_found;
   for (int vertex = 1;; ++vertex) {
-    Hit hit;
-    ++counters.rays;
-    const bool found = m_accel.intersect(ray, hit);
     const bool camera_ray = vertex == 1;
+    if (!camera_ray) {
+      ++counters.rays;
+      found = m_accel.intersect(ray, hit);
+    }
     // MIS weight for light found by following the BRDF-sampled ray.
     auto brdf_weight = [&](double light_density) {
       if (camera_ray) return 1.0;
@@ -359,12 +373,20 @@ Rgb Integrator::li(Ray ray, Pcg32& rng, Counters& counters, FirstHit* first) con
     if (brdf == nullptr) break;  // a purely emissive surface absorbs
     const Vec3 wo = frame.to_local(wo_world);
 
+    // Dimension groups of this vertex (owen.h): one for the light sample (point, choice of light, choice within
+    // the light), one for the BRDF sample (direction, lobe, Russian roulette). Fixed per vertex whatever the
+    // sampling mode, so the two stratified dimensions always carry the 2D points.
+    // Only the dimensions used are computed: the environment's choice between sun and sky (u_nee[3]) only with
+    // an environment, Russian roulette (u_brdf[3]) only from rr_depth on.
+    const auto u_brdf = sampler.group(static_cast<std::uint32_t>(2 * vertex), roulette(vertex) ? 4 : 3);
+
     // Next-event estimation.
     if (m_mode != SamplingMode::brdf && !m_lights.empty()) {
-      const double u_light = rng.next_double();
+      const auto u_nee = sampler.group(static_cast<std::uint32_t>(2 * vertex - 1), m_env_light >= 0 ? 4 : 3);
+      const double u_light = u_nee[2];
       const auto pick = std::min(static_cast<std::size_t>(u_light * n_lights), m_lights.size() - 1);
-      const Vec2 u{rng.next_double(), rng.next_double()};
-      const double u_extra = rng.next_double();
+      const Vec2 u{u_nee[0], u_nee[1]};
+      const double u_extra = u_nee[3];
       const LightSample ls = sample_light(m_lights[pick], hit.position, u, u_extra);
       if (ls.valid && dot(ls.wi, ng) > 0.0) {
         const Vec3 wi = frame.to_local(ls.wi);
@@ -385,8 +407,7 @@ Rgb Integrator::li(Ray ray, Pcg32& rng, Counters& counters, FirstHit* first) con
     }
 
     // BRDF sampling for the next direction.
-    const Vec2 u{rng.next_double(), rng.next_double()};
-    const BrdfSample bs = brdf->sample(wo, u, rng.next_double());
+    const BrdfSample bs = brdf->sample(wo, {u_brdf[0], u_brdf[1]}, u_brdf[2]);
     if (first != nullptr && camera_ray) {
       first->hit = true;
       first->albedo = bs.weight;
@@ -401,9 +422,9 @@ Rgb Integrator::li(Ray ray, Pcg32& rng, Counters& counters, FirstHit* first) con
     prev_position = hit.position;
     ray = Ray{offset_origin(hit.position, ng, wi_world), wi_world};
     // Russian roulette (unbiased: survivors are divided by the survival probability).
-    if (vertex >= m_scene.settings.rr_depth && m_scene.settings.rr_depth > 0) {
+    if (roulette(vertex)) {
       const double q = std::min(1.0, beta.max_component());
-      if (rng.next_double() >= q) break;
+      if (u_brdf[3] >= q) break;
       beta = beta / q;
     }
   }
@@ -429,14 +450,31 @@ struct CameraModel {
   }
 };
 
-std::uint64_t mix64(std::uint64_t x) {  // SplitMix64 finalizer (Steele, Lea, Flood 2014)
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30u)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27u)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31u);
+}  // namespace
+
+Image image_from_sums(const std::vector<FixedRgb>& sums, const std::vector<std::uint32_t>& nonfinite, int width, int height,
+                      std::uint64_t samples) {
+  Image image(width, height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+      const bool bad = !nonfinite.empty() && nonfinite[p] > 0;
+      image.set(x, y, bad ? Rgb::gray(std::numeric_limits<double>::quiet_NaN()) : sums[p].mean(samples));
+    }
+  }
+  return image;
 }
 
-}  // namespace
+std::pair<int, int> shard_sample_range(int spp, const ShardSpec& shard) {
+  if (shard.split == ShardSplit::tiles) return {0, spp};
+  const auto begin = static_cast<std::int64_t>(spp) * shard.index / shard.count;
+  const auto end = static_cast<std::int64_t>(spp) * (shard.index + 1) / shard.count;
+  return {static_cast<int>(begin), static_cast<int>(end)};
+}
+
+bool shard_owns_tile(int tile, const ShardSpec& shard) {
+  return shard.split == ShardSplit::samples || tile % shard.count == shard.index;
+}
 
 Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -445,54 +483,100 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   const int threads = options.threads >= 0 ? options.threads : scene.settings.threads;
   if (spp < 1) return make_error("render: samples per pixel must be >= 1");
   if (auto limits = check_scene_limits(scene); !limits) return limits.error();
+  const ShardSpec& shard = options.shard;
+  if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count) {
+    return make_error("render: shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) +
+                      " is not one of 0/N .. (N-1)/N");
+  }
   Integrator integrator(scene, options.mode, max_depth);
   auto ok = integrator.prepare();
   if (!ok) return ok.error();
+  const auto t_render = std::chrono::steady_clock::now();  // after the BVH build and the light tables
   const CameraModel camera(scene.camera);
   const int w = scene.camera.width;
   const int h = scene.camera.height;
   const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-  std::vector<Rgb> sum(pixels);
+  RenderResult result;
+  result.sums.assign(pixels, FixedRgb{});
+  result.nonfinite.assign(pixels, 0);
   std::vector<Rgb> albedo_sum(options.aovs ? pixels : 0);
   std::vector<Vec3> normal_first(options.aovs ? pixels : 0);
   std::vector<double> depth_first(options.aovs ? pixels : 0, 0.0);
-  std::atomic<std::uint64_t> rays{0};
-  std::atomic<std::uint64_t> nonfinite{0};
+  std::atomic<std::uint64_t> rays{0}, nonfinite{0};
+  // Fixed 16 x 16 tiles in row-major order (the unit of the tile split).
+  constexpr int tile_size = render_tile_size;
+  constexpr int packet = 8;
+  static_assert(tile_size % packet == 0);
+  const int tiles_x = (w + tile_size - 1) / tile_size;
+  const int tiles_y = (h + tile_size - 1) / tile_size;
+  std::vector<int> tiles;
+  std::uint64_t covered = 0;  // pixels rendered
+  for (int t = 0; t < tiles_x * tiles_y; ++t) {
+    if (!shard_owns_tile(t, shard)) continue;
+    tiles.push_back(t);
+    const int x0 = (t % tiles_x) * tile_size, y0 = (t / tiles_x) * tile_size;
+    covered += static_cast<std::uint64_t>(std::min(w, x0 + tile_size) - x0) * static_cast<std::uint64_t>(std::min(h, y0 + tile_size) - y0);
+  }
+  const auto [first_sample, end_sample] = shard_sample_range(spp, shard);
+  result.sample_begin = first_sample;
+  const int samples = end_sample - first_sample;
   // Passes of up to 8 samples: Ctrl-C and progress react within one pass.
-  const int per_pass = std::clamp(spp / 32, 1, 8);
-  RenderResult result;
+  const int per_pass = std::clamp(samples / 32, 1, 8);
   tbb::task_arena arena(arena_threads(threads));
-  int done = 0;
-  while (done < spp) {
-    if (options.cancel != nullptr && options.cancel->load() && done > 0) {
+  int done = first_sample;
+  while (done < end_sample) {
+    if (options.cancel != nullptr && options.cancel->load() && done > first_sample) {
       result.stats.cancelled = true;
       break;
     }
     const int s0 = done;
-    const int s1 = std::min(spp, done + per_pass);
+    const int s1 = std::min(end_sample, done + per_pass);
     arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size()), [&](const tbb::blocked_range<std::size_t>& r) {
         Counters counters;
-        for (int y = r.rows().begin(); y != r.rows().end(); ++y) {
-          for (int x = r.cols().begin(); x != r.cols().end(); ++x) {
-            const std::size_t pi_ = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
-            Rgb acc;
-            for (int s = s0; s < s1; ++s) {
-              Pcg32 rng(mix64(scene.settings.seed ^ mix64(pi_)), static_cast<std::uint64_t>(s));
-              const Ray ray = camera.ray(x + rng.next_double(), y + rng.next_double());
-              FirstHit first;
-              const Rgb l = integrator.li(ray, rng, counters, options.aovs ? &first : nullptr);
-              if (!is_finite(l)) ++counters.nonfinite;
-              acc += l;
-              if (options.aovs) {
-                albedo_sum[pi_] += first.albedo;
-                if (s == 0) {
-                  normal_first[pi_] = first.hit ? first.normal : Vec3{};
-                  depth_first[pi_] = first.hit ? first.depth : 0.0;
+        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+          const int tile = tiles[k];
+          const int x0 = (tile % tiles_x) * tile_size;
+          const int y0 = (tile / tiles_x) * tile_size;
+          const int x1 = std::min(w, x0 + tile_size);
+          const int y1 = std::min(h, y0 + tile_size);
+          for (int y = y0; y < y1; ++y) {
+            // Camera rays go to Embree as packets of the 8 neighbouring pixels of a row that share a sample index
+            // (tiles are multiples of 8 wide, so packets are the same however the image is split).
+            for (int xp = x0; xp < x1; xp += packet) {
+              const int n = std::min(packet, x1 - xp);
+              const std::size_t p0 = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(xp);
+              std::uint64_t pixel_seed[packet];
+              for (int i = 0; i < n; ++i) pixel_seed[i] = mix64(scene.settings.seed ^ mix64(p0 + static_cast<std::size_t>(i)));
+              for (int s = s0; s < s1; ++s) {
+                Ray camera_rays[packet];
+                for (int i = 0; i < n; ++i) {
+                  const auto jitter = PixelSampler(pixel_seed[i], static_cast<std::uint32_t>(s), options.sampler).group(0, 2);
+                  camera_rays[i] = camera.ray(xp + i + jitter[0], y + jitter[1]);
+                }
+                Hit hits[packet];
+                bool found[packet];
+                integrator.accel().intersect8(camera_rays, n, hits, found);
+                counters.rays += static_cast<std::uint64_t>(n);
+                for (int i = 0; i < n; ++i) {
+                  const std::size_t pi_ = p0 + static_cast<std::size_t>(i);
+                  const PixelSampler sampler(pixel_seed[i], static_cast<std::uint32_t>(s), options.sampler);
+                  FirstHit first;
+                  const Rgb l = integrator.li(camera_rays[i], found[i], hits[i], sampler, counters, options.aovs ? &first : nullptr);
+                  if (!result.sums[pi_].add(l)) {
+                    ++counters.nonfinite;
+                    ++result.nonfinite[pi_];
+                  }
+                  if (options.aovs) {
+                    albedo_sum[pi_] += first.albedo;
+                    if (s == 0) {
+                      normal_first[pi_] = first.hit ? first.normal : Vec3{};
+                      depth_first[pi_] = first.hit ? first.depth : 0.0;
+                    }
+                  }
                 }
               }
             }
-            sum[pi_] += acc;
           }
         }
         rays.fetch_add(counters.rays, std::memory_order_relaxed);
@@ -500,27 +584,27 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
       });
     });
     done = s1;
-    if (options.progress) options.progress(static_cast<double>(done) / spp, done);
+    if (options.progress) options.progress(static_cast<double>(done - first_sample) / std::max(1, samples), done - first_sample);
   }
-  result.beauty = Image(w, h);
+  result.sample_end = done;
+  result.stats.render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_render).count();
+  const auto rendered = static_cast<std::uint64_t>(done - first_sample);
+  result.beauty = image_from_sums(result.sums, result.nonfinite, w, h, rendered);
   if (options.aovs) {
     result.albedo = Image(w, h);
     result.normal = Image(w, h);
     result.depth = Image(w, h);
-  }
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
-      result.beauty.set(x, y, sum[i] / done);
-      if (options.aovs) {
-        result.albedo.set(x, y, albedo_sum[i] / done);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+        result.albedo.set(x, y, rendered > 0 ? albedo_sum[i] / static_cast<double>(rendered) : Rgb{});
         result.normal.set(x, y, {normal_first[i].x, normal_first[i].y, normal_first[i].z});
         result.depth.set(x, y, Rgb::gray(depth_first[i]));
       }
     }
   }
-  result.stats.spp_done = done;
-  result.stats.camera_rays = static_cast<std::uint64_t>(done) * pixels;
+  result.stats.spp_done = static_cast<int>(rendered);
+  result.stats.camera_rays = rendered * covered;
   result.stats.rays = rays.load();
   result.stats.nonfinite_samples = nonfinite.load();
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -528,23 +612,37 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
 }
 
 Result<RadianceEstimate> estimate_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, int samples,
-                                           SamplingMode mode, int max_depth, std::uint64_t seed) {
+                                           SamplingMode mode, int max_depth, std::uint64_t seed, SamplerKind sampler) {
   Integrator integrator(scene, mode, max_depth > 0 ? max_depth : scene.settings.max_depth);
   auto ok = integrator.prepare();
   if (!ok) return ok.error();
+  if (samples < 1) return make_error("estimate_radiance: samples must be >= 1");
+  // Randomized QMC: `replicas` independent scrambles (pixel seeds) of samples / replicas points each. Their
+  // means are independent and unbiased, so the spread of the means gives an honest standard error (the
+  // per-sample variance would overstate the error of stratified points).
+  const int replicas = std::min(samples, 64);
   Counters counters;
   Rgb sum, sum2;
-  for (int s = 0; s < samples; ++s) {
-    Pcg32 rng(mix64(seed), static_cast<std::uint64_t>(s));
-    const Rgb v = integrator.li(Ray{origin, normalize(direction)}, rng, counters, nullptr);
-    sum += v;
-    sum2 += v * v;
+  int used = 0;
+  for (int r = 0; r < replicas; ++r) {
+    const int n = samples / replicas + (r < samples % replicas ? 1 : 0);
+    const std::uint64_t pixel_seed = mix64(seed ^ mix64(static_cast<std::uint64_t>(r)));
+    Rgb replica;
+    for (int s = 0; s < n; ++s) {
+      replica += integrator.li(Ray{origin, normalize(direction)}, PixelSampler(pixel_seed, static_cast<std::uint32_t>(s), sampler), counters, nullptr);
+    }
+    used += n;
+    sum += replica;
+    const Rgb mean = replica / n;
+    sum2 += mean * mean * n;  // weighted by the replica's size
   }
   RadianceEstimate e;
-  e.mean = sum / samples;
-  const Rgb var = sum2 / samples - e.mean * e.mean;
-  e.standard_error = {std::sqrt(std::max(0.0, var.r) / samples), std::sqrt(std::max(0.0, var.g) / samples),
-                      std::sqrt(std::max(0.0, var.b) / samples)};
+  e.mean = sum / used;
+  // Variance of the weighted mean: sum n_r (m_r - m)^2 / ((R - 1) N), the replicas' sizes differing by at most 1.
+  const Rgb spread = sum2 / used - e.mean * e.mean;
+  const double scale = replicas > 1 ? static_cast<double>(replicas) / (replicas - 1) / replicas : 0.0;
+  e.standard_error = {std::sqrt(std::max(0.0, spread.r) * scale), std::sqrt(std::max(0.0, spread.g) * scale),
+                      std::sqrt(std::max(0.0, spread.b) * scale)};
   return e;
 }
 

@@ -58,6 +58,11 @@ Result<bool> check_scene_limits(const Scene& scene) {
   const Camera& cam = scene.camera;
   c.position("camera position", cam.position);
   c.position("camera look_at", cam.look_at);
+  if (cam.width < 1 || cam.height < 1 || cam.width > max_camera_side || cam.height > max_camera_side ||
+      static_cast<long long>(cam.width) * cam.height > max_render_pixels) {
+    c.fail("camera", std::to_string(cam.width) + " x " + std::to_string(cam.height) + " pixels is outside the limits (" +
+                         std::to_string(max_camera_side) + " on a side, " + std::to_string(max_render_pixels) + " in all)");
+  }
   c.unit("camera up", cam.up);
   if (c.ok() && !(length(cam.look_at - cam.position) > 0.0)) c.fail("camera", "look_at equals position");
   for (std::size_t i = 0; i < scene.spheres.size() && c.ok(); ++i) {

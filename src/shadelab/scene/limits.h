@@ -32,6 +32,24 @@ inline constexpr double max_uv_scale = 1e6;
 // Gloss-map exponents (gloss_range): the BRDF models' own upper bound on n.
 inline constexpr double max_gloss_exponent = 1e6;
 
+// The camera: at most 16384 pixels on a side and max_render_pixels in all (2^25: 8192 x 4096, or 8K UHD's
+// 7680 x 4320). The renderers allocate per pixel (render_bytes_per_pixel below); without this bound a
+// 16384 x 16384 camera asked for some 10 GB before the first sample.
+inline constexpr int max_camera_side = 16384;
+inline constexpr long long max_render_pixels = 1LL << 25;
+// The memory a render takes per pixel, beyond the scene, through writing its files (EXR, PNG): the
+// reference renderer's exact accumulators (48 bytes of 128-bit fixed-point sums and a 4-byte non-finite
+// count, render/fixed_sum.h: what makes shards merge bit for bit) and image, the tone-mapped copy and the
+// encoders' buffers. With AOVs (albedo, normal, depth) the larger figure. At max_render_pixels: 3 GiB, or
+// 7 GiB with AOVs. Checked by MemoryBound.RenderStaysWithinItsPerPixelBudget
+// (tools/shadelab/cli_memory_test.cpp) under RLIMIT_AS.
+inline constexpr std::uint64_t render_bytes_per_pixel = 96;
+inline constexpr std::uint64_t render_aov_bytes_per_pixel = 224;
+// The images one scene holds, together (file and procedural textures, the environment map; 12 bytes a
+// pixel): a scene naming many large images is refused once they pass it, each read given only what is left
+// (image_io.h, read_image's budget), so loading a scene's images never allocates more than this.
+inline constexpr std::uint64_t max_scene_image_bytes = 2ULL << 30;
+
 // Files.
 inline constexpr std::size_t max_json_depth = 64;                       // nesting of scene and glTF JSON
 inline constexpr std::uintmax_t max_scene_file_bytes = 64ULL << 20;     // a scene JSON file
@@ -43,7 +61,7 @@ inline constexpr std::uint64_t max_gltf_node_instances = 1'000'000;
 inline constexpr std::uint64_t max_scene_triangles = 10'000'000;
 
 // The renderers' backstop: every bound above that a Scene in memory can break (coordinates, lengths,
-// directions, light values, triangle count), named by shape or light index.
+// directions, light values, triangle count, camera pixels), named by shape or light index.
 Result<bool> check_scene_limits(const Scene& scene);
 
 }  // namespace shadelab

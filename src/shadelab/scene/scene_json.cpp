@@ -39,7 +39,7 @@ constexpr std::array<std::string_view, 10> top_level_keys = {
     "$schema", "description", "units", "camera", "render", "textures", "materials", "shapes", "lights", "environment"};
 
 constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr int max_image_side = 16384;   // camera width and height
+constexpr int max_image_side = max_camera_side;  // camera width and height
 constexpr int max_texture_side = 8192;  // procedural textures
 
 struct Failure {
@@ -391,6 +391,12 @@ class Parser {
     if (auto n = o.get("fov")) c.vfov_deg = number_in(*n, 0.0, true, 180.0, true);
     if (auto n = o.get("width")) c.width = int_in(*n, 1, max_image_side);
     if (auto n = o.get("height")) c.height = int_in(*n, 1, max_image_side);
+    if (static_cast<long long>(c.width) * c.height > max_render_pixels) {
+      throw Failure{o.node().child_pointer(o.has("height") ? "height" : "width"),
+                    std::to_string(c.width) + " x " + std::to_string(c.height) + " is " +
+                        std::to_string(static_cast<long long>(c.width) * c.height) + " pixels, more than the limit of " +
+                        std::to_string(max_render_pixels) + " (8192 x 4096)"};
+    }
     const Vec3 view = c.look_at - c.position;
     if (length(view) == 0.0) {
       throw Failure{o.node().child_pointer(o.has("look_at") ? "look_at" : "position"),
@@ -438,9 +444,10 @@ class Parser {
       t.data = o.has("data") && boolean(*o.get("data"));
       t.source = path.string();
       ReadInfo info;
-      auto image = read_image(path, &info);
+      auto image = read_budgeted(path, &info);
       if (!image) throw Failure{o.node().child_pointer("file"), image.error().message};
-      t.image = std::move(*image);
+      charge_image(Node(o.node().value().at("file"), o.node().child_pointer("file")), image->pixel_count() * 12);
+      t.image = std::move(image).value();
       if (t.data && info.format == "png") {
         // read_image decoded the PNG as sRGB colour; a data texture holds the stored code / max code.
         // linear_to_srgb inverts the decode; rounding to the nearest code makes the inversion exact.
@@ -461,6 +468,7 @@ class Parser {
     const Object o(node, keys, "an " + kind + " texture");
     const int size = o.has("size") ? int_in(*o.get("size"), 1, max_texture_side) : default_size;
     const std::uint64_t seed = o.has("seed") ? seed_value(*o.get("seed")) : 1;
+    charge_image(o.has("size") ? *o.get("size") : node, static_cast<std::uint64_t>(size) * static_cast<std::uint64_t>(size) * 12);
     if (kind == "asphalt-diffuse") {
       AsphaltDiffuseOptions opt{size, seed, 0.08};
       if (auto n = o.get("albedo")) opt.albedo = number_in(*n, 0.0, false, 1.0, false);
@@ -710,7 +718,7 @@ class Parser {
       if (cached == m_meshes.end()) {
         auto loaded = load_mesh(path);
         if (!loaded) file_node.fail(loaded.error().message);
-        cached = m_meshes.emplace(path.string(), std::move(*loaded)).first;
+        cached = m_meshes.emplace(path.string(), std::move(loaded).value()).first;
       }
       // Bound the scene's triangles before copying another instance (scene/limits.h).
       const std::uint64_t triangles = cached->second.indices.size() / 3;
@@ -889,14 +897,15 @@ class Parser {
       const Object o(node, {"file", "rotation", "scale"}, "an image environment");
       const Node file_node = *o.get("file");
       const std::filesystem::path path = file(file_node);
-      auto image = read_image(path);
+      auto image = read_budgeted(path, nullptr);
       if (!image) file_node.fail(image.error().message);
+      charge_image(file_node, image->pixel_count() * 12);
       if (image->width != 2 * image->height) {
         file_node.fail("'" + path.string() + "' is " + std::to_string(image->width) + " x " +
                        std::to_string(image->height) + "; a lat-long map is twice as wide as it is high");
       }
       env.kind = Environment::Kind::image;
-      env.latlong = std::move(*image);
+      env.latlong = std::move(image).value();
       env.source = path.string();
       if (auto n = o.get("rotation")) env.rotation_deg = number(*n);
       const double scale = o.has("scale") ? number_in(*o.get("scale"), 0.0, false, max_light_value) : 1.0;
@@ -906,7 +915,7 @@ class Parser {
       for (float v : env.latlong.data) peak = std::max(peak, std::abs(v));
       if (!(static_cast<double>(peak) * env.scale <= max_light_value)) {
         throw Failure{o.has("scale") ? o.node().child_pointer("scale") : file_node.pointer(),
-                      "the brightest texel of '" + printable(path.string()) + "' (" + format_number(peak) +
+                      "the brightest texel of '" + printable(path.string()) + "' (" + format_number(static_cast<double>(peak)) +
                           ") times the scale is " + format_number(static_cast<double>(peak) * env.scale) +
                           ", above the largest supported light value " + format_number(max_light_value)};
       }
@@ -941,6 +950,29 @@ class Parser {
   std::map<std::string, int, std::less<>> m_material_index;
   std::map<std::string, MeshShape> m_meshes;  // each mesh file read once, by resolved path
   std::uint64_t m_triangles = 0;              // of all mesh instances so far
+  std::uint64_t m_image_bytes = 0;            // of all textures and the environment map so far
+
+  // The scene's image budget (max_scene_image_bytes): what is left, and charging an image to it.
+  std::uint64_t image_budget_left() const { return max_scene_image_bytes - m_image_bytes; }
+  std::string image_budget_note() const {
+    return "the images of a scene may take " + std::to_string(max_scene_image_bytes >> 20) + " MiB in all, " +
+           std::to_string(image_budget_left() >> 20) + " MiB are left";
+  }
+  void charge_image(const Node& n, std::uint64_t bytes) {
+    if (bytes > image_budget_left()) {
+      n.fail("the image takes " + std::to_string((bytes + (1ULL << 20) - 1) >> 20) + " MiB; " + image_budget_note());
+    }
+    m_image_bytes += bytes;
+  }
+  // read_image within what is left of the budget; a read refused for memory says so.
+  Result<Image> read_budgeted(const std::filesystem::path& path, ReadInfo* info) {
+    auto image = read_image(path, info, image_budget_left());
+    if (!image && image_budget_left() < image_read_budget_bytes &&
+        image.error().message.find("memory budget") != std::string::npos) {
+      return make_error(image.error().message + " (" + image_budget_note() + ")");
+    }
+    return image;
+  }
 };
 
 // Tracks the JSON pointer of the value being parsed (for duplicate keys and number overflow, which

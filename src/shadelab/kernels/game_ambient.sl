@@ -1,0 +1,49 @@
+// game_ambient: the baked-environment terms of the game shading equation (render/game_renderer.h; the zoo
+// article's shader form; Lagarde, "PI or not to PI in game lighting equation", 2012), written once for the
+// game renderer and for the browser explorer's lit sphere (web/):
+//   diffuse ambient:   L += rho_d (E/pi)(n), E/pi from sh9_irradiance_game (sh9.sl) or an irradiance map;
+//   specular ambient:  L += rho_s(cos theta_o) prefiltered(R, n_phong), R = 2 (wo.n) n - wo the mirror
+//     direction, the prefiltered cube read at the level whose Phong exponent is n_phong (envmap/prefilter.h's
+//     gloss mapping n_i = 2^(scale (1 - i/(M - 1)) + bias) inverted), rho_s the specular lobe's directional
+//     albedo tabulated over cos(theta_o) (brdf/game_lobe.h).
+
+const int GAME_ALBEDO_BINS = 32;
+
+// rho_s at cos(theta_o) = (b + 0.5) / GAME_ALBEDO_BINS for bin b.
+struct GameSpecularAlbedo {
+  rgb bin[GAME_ALBEDO_BINS];
+};
+
+// rho_s(cos theta_o): linear between bin centres, the end bins' values beyond the first and last centre.
+inline rgb game_specular_albedo(GameSpecularAlbedo table, real cos_o) {
+  real c = clamp(cos_o, 0.0, 1.0);
+  real pos = clamp(c * real(GAME_ALBEDO_BINS) - 0.5, 0.0, real(GAME_ALBEDO_BINS - 1));
+  int b0 = int(pos);
+  int b1 = b0 + 1 < GAME_ALBEDO_BINS - 1 ? b0 + 1 : GAME_ALBEDO_BINS - 1;
+  real t = pos - real(b0);
+  return table.bin[b0] * (1.0 - t) + table.bin[b1] * t;
+}
+
+// The (fractional) mip level of a chain of `levels` levels whose level i has the Phong exponent
+// 2^(scale (1 - i/(levels - 1)) + bias): i = (levels - 1)(1 - (log2 n - bias)/scale), clamped to the chain.
+// n is floored at 1e-9 so that log2 stays finite.
+inline real game_prefiltered_level(real n_phong, real levels, real gloss_scale, real gloss_bias) {
+  real level = (levels - 1.0) * (1.0 - (log2(max(n_phong, 1.0e-9)) - gloss_bias) / gloss_scale);
+  return clamp(level, 0.0, levels - 1.0);
+}
+
+// The mirror direction of wo about the normal n (both unit, world space): R = 2 (wo.n) n - wo.
+inline vec3 game_reflect(vec3 wo, vec3 n) {
+  return n * (2.0 * dot(wo, n)) - wo;
+}
+
+// The diffuse ambient: a surface of diffuse albedo rho_d under an environment of irradiance E shows
+// rho_d E/pi (game units: e_over_pi is E/pi, the exit radiance of a white Lambert surface).
+inline rgb game_diffuse_ambient(rgb diffuse_albedo, rgb e_over_pi) {
+  return diffuse_albedo * e_over_pi;
+}
+
+// The specular ambient: rho_s times the prefiltered radiance about the mirror direction.
+inline rgb game_specular_ambient(rgb rho_s, rgb prefiltered) {
+  return rho_s * prefiltered;
+}

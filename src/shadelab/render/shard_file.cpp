@@ -1,0 +1,424 @@
+#include "shadelab/render/shard_file.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <exception>
+#include <map>
+
+#include "shadelab/image/image_io.h"
+#include "shadelab/sampling/owen.h"
+
+namespace shadelab {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* shard_format = "shadelab-shard/1";
+constexpr const char* shard_attribute = "shadelab.shard";
+constexpr const char* channel_colour[3] = {"R", "G", "B"};
+
+std::string sum_channel(int c, int word) { return std::string("sum.") + channel_colour[c] + ".w" + std::to_string(word); }
+
+// A fingerprint, not a cryptographic hash: every value goes through SplitMix64's finalizer, chained.
+class Hasher {
+ public:
+  void u64(std::uint64_t v) { m_h = mix64(m_h ^ mix64(v + m_n++)); }
+  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
+  void i(long long v) { u64(static_cast<std::uint64_t>(v)); }
+  void str(const std::string& s) {
+    u64(s.size());
+    for (std::size_t k = 0; k < s.size(); k += 8) {
+      std::uint64_t w = 0;
+      std::memcpy(&w, s.data() + k, std::min<std::size_t>(8, s.size() - k));
+      u64(w);
+    }
+  }
+  void vec(const Vec3& v) { f64(v.x), f64(v.y), f64(v.z); }
+  void rgb(const Rgb& c) { f64(c.r), f64(c.g), f64(c.b); }
+  void image(const Image& im) {
+    i(im.width), i(im.height);
+    for (std::size_t k = 0; k + 1 < im.data.size(); k += 2) {
+      u64(std::bit_cast<std::uint32_t>(im.data[k]) | (static_cast<std::uint64_t>(std::bit_cast<std::uint32_t>(im.data[k + 1])) << 32u));
+    }
+    if (im.data.size() % 2 == 1) u64(std::bit_cast<std::uint32_t>(im.data.back()));
+  }
+  std::uint64_t value() const { return m_h; }
+
+ private:
+  std::uint64_t m_h = 0x243f6a8885a308d3ULL;
+  std::uint64_t m_n = 0;
+};
+
+Error file_error(const fs::path& path, const std::string& why) { return make_error("'" + path.string() + "': " + why); }
+
+class MemoryStream final : public Imf::OStream {
+ public:
+  MemoryStream() : Imf::OStream("memory") {}
+  void write(const char c[], int n) override {
+    const auto count = static_cast<std::size_t>(n);
+    if (m_bytes.size() < m_pos + count) m_bytes.resize(m_pos + count);
+    std::memcpy(m_bytes.data() + m_pos, c, count);
+    m_pos += count;
+  }
+  std::uint64_t tellp() override { return m_pos; }
+  void seekp(std::uint64_t pos) override { m_pos = static_cast<std::size_t>(pos); }
+  const std::vector<char>& bytes() const { return m_bytes; }
+
+ private:
+  std::vector<char> m_bytes;
+  std::size_t m_pos = 0;
+};
+
+nlohmann::json to_json(const ShardInfo& s) {
+  return {{"format", shard_format}, {"scene_hash", s.scene_hash}, {"scene", s.scene}, {"renderer", s.renderer},
+          {"seed", s.seed}, {"spp", s.spp}, {"max_depth", s.max_depth}, {"sampling", s.sampling}, {"sampler", s.sampler},
+          {"width", s.width}, {"height", s.height}, {"split", s.split}, {"index", s.index}, {"count", s.count},
+          {"sample_begin", s.sample_begin}, {"sample_end", s.sample_end}, {"tile_size", s.tile_size},
+          {"fixed_point_bits", s.fixed_point_bits}, {"nonfinite_samples", s.nonfinite_samples}};
+}
+
+}  // namespace
+
+std::string scene_fingerprint(const Scene& scene) {
+  Hasher h;
+  const Camera& c = scene.camera;
+  h.vec(c.position), h.vec(c.look_at), h.vec(c.up), h.f64(c.vfov_deg), h.i(c.width), h.i(c.height);
+  h.i(static_cast<long long>(scene.textures.size()));
+  for (const Texture& t : scene.textures) h.str(t.name), h.i(t.data ? 1 : 0), h.image(t.image);
+  h.i(static_cast<long long>(scene.materials.size()));
+  for (const Material& m : scene.materials) {
+    h.str(m.name), h.str(m.model);
+    h.i(static_cast<long long>(m.params.size()));
+    for (const auto& [k, v] : m.params) h.str(k), h.str(v);
+    h.i(m.kd_texture), h.i(m.ks_texture), h.i(m.gloss_texture), h.i(m.normal_texture);
+    h.f64(m.gloss_encoding.n_black), h.f64(m.gloss_encoding.n_white);
+    h.f64(m.uv_scale.x), h.f64(m.uv_scale.y), h.rgb(m.emission);
+  }
+  h.i(static_cast<long long>(scene.spheres.size()));
+  for (const auto& s : scene.spheres) h.vec(s.center), h.f64(s.radius), h.i(s.material);
+  h.i(static_cast<long long>(scene.quads.size()));
+  for (const auto& q : scene.quads) h.vec(q.corner), h.vec(q.u), h.vec(q.v), h.i(q.material);
+  h.i(static_cast<long long>(scene.disks.size()));
+  for (const auto& d : scene.disks) h.vec(d.center), h.vec(d.normal), h.f64(d.radius), h.i(d.material);
+  h.i(static_cast<long long>(scene.meshes.size()));
+  for (const auto& m : scene.meshes) {
+    h.i(static_cast<long long>(m.positions.size()));
+    for (const auto& p : m.positions) h.vec(p);
+    h.i(static_cast<long long>(m.normals.size()));
+    for (const auto& n : m.normals) h.vec(n);
+    h.i(static_cast<long long>(m.uvs.size()));
+    for (const auto& t : m.uvs) h.f64(t.x), h.f64(t.y);
+    h.i(static_cast<long long>(m.indices.size()));
+    for (auto k : m.indices) h.u64(k);
+    h.i(m.material);
+  }
+  h.i(static_cast<long long>(scene.lights.size()));
+  for (const auto& l : scene.lights) {
+    h.i(static_cast<long long>(l.index()));
+    std::visit(
+        [&](const auto& x) {
+          using T = std::decay_t<decltype(x)>;
+          if constexpr (std::is_same_v<T, DirectionalLight>) h.vec(x.to_light), h.rgb(x.irradiance);
+          if constexpr (std::is_same_v<T, PointLight>) h.vec(x.position), h.rgb(x.intensity);
+          if constexpr (std::is_same_v<T, SpotLight>) h.vec(x.position), h.vec(x.axis), h.rgb(x.intensity), h.f64(x.cos_inner), h.f64(x.cos_outer);
+          if constexpr (std::is_same_v<T, SphereLight>) h.vec(x.center), h.f64(x.radius), h.rgb(x.radiance);
+          if constexpr (std::is_same_v<T, HemisphereLight>) h.vec(x.up), h.rgb(x.sky), h.rgb(x.ground);
+        },
+        l);
+  }
+  const Environment& e = scene.environment;
+  h.i(static_cast<long long>(e.kind)), h.rgb(e.uniform), h.image(e.latlong), h.f64(e.rotation_deg), h.f64(e.scale);
+  h.vec(e.sky.sun_direction), h.f64(e.sky.sun_angular_radius_deg), h.rgb(e.sky.sun_irradiance);
+  h.rgb(e.sky.zenith), h.rgb(e.sky.horizon), h.rgb(e.sky.ground);
+  h.i(scene.settings.rr_depth);
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.value()));
+  return hex;
+}
+
+std::vector<std::pair<std::string, std::string>> ShardInfo::render_identity() const {
+  return {{"renderer", renderer},
+          {"scene_hash", scene_hash},
+          {"seed", std::to_string(seed)},
+          {"spp", std::to_string(spp)},
+          {"max_depth", std::to_string(max_depth)},
+          {"sampling", sampling},
+          {"sampler", sampler},
+          {"width", std::to_string(width)},
+          {"height", std::to_string(height)},
+          {"split", split},
+          {"count", std::to_string(count)},
+          {"tile_size", std::to_string(tile_size)},
+          {"fixed_point_bits", std::to_string(fixed_point_bits)}};
+}
+
+ShardSpec ShardInfo::spec() const { return {index, count, split == "tiles" ? ShardSplit::tiles : ShardSplit::samples}; }
+
+ShardInfo make_shard_info(const Scene& scene, const RenderOptions& options, int spp, int max_depth) {
+  ShardInfo s;
+  s.scene_hash = scene_fingerprint(scene);
+  s.scene = scene.source;
+  s.seed = scene.settings.seed;
+  s.spp = spp;
+  s.max_depth = max_depth;
+  s.sampling = options.mode == SamplingMode::mis ? "mis" : options.mode == SamplingMode::brdf ? "brdf" : "light";
+  s.sampler = options.sampler == SamplerKind::owen_sobol ? "sobol" : "independent";
+  s.width = scene.camera.width;
+  s.height = scene.camera.height;
+  s.split = options.shard.split == ShardSplit::tiles ? "tiles" : "samples";
+  s.index = options.shard.index;
+  s.count = options.shard.count;
+  const auto [b, e] = shard_sample_range(spp, options.shard);
+  s.sample_begin = b;
+  s.sample_end = e;
+  return s;
+}
+
+bool same_shard(const ShardInfo& a, const ShardInfo& b) {
+  return a.render_identity() == b.render_identity() && a.index == b.index && a.sample_begin == b.sample_begin &&
+         a.sample_end == b.sample_end;
+}
+
+Result<bool> write_shard(const fs::path& path, const ShardInfo& info, const RenderResult& result) {
+  const auto pixels = static_cast<std::size_t>(info.width) * static_cast<std::size_t>(info.height);
+  if (result.sums.size() != pixels || result.nonfinite.size() != pixels || result.beauty.pixel_count() != pixels) {
+    return make_error("write_shard: " + file_error(path, "the render has not the image size of its description").message);
+  }
+  std::vector<std::uint32_t> words(pixels * 12);
+  for (std::size_t p = 0; p < pixels; ++p) {
+    for (int c = 0; c < 3; ++c) {
+      const auto w = to_words(result.sums[p].c[c]);
+      for (int k = 0; k < 4; ++k) words[p * 12 + static_cast<std::size_t>(4 * c + k)] = w[static_cast<std::size_t>(k)];
+    }
+  }
+  try {
+    Imf::Header header(info.width, info.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    header.insert(shard_attribute, Imf::StringAttribute(to_json(info).dump()));
+    Imf::FrameBuffer fb;
+    auto* beauty = const_cast<float*>(result.beauty.data.data());  // OpenEXR's slices are non-const; only read
+    auto* nonfinite = const_cast<std::uint32_t*>(result.nonfinite.data());
+    header.channels().insert("nonfinite", Imf::Channel(Imf::UINT));
+    fb.insert("nonfinite", Imf::Slice(Imf::UINT, reinterpret_cast<char*>(nonfinite), sizeof(std::uint32_t),
+                                      sizeof(std::uint32_t) * static_cast<std::size_t>(info.width)));
+    for (int c = 0; c < 3; ++c) {
+      header.channels().insert(channel_colour[c], Imf::Channel(Imf::FLOAT));
+      fb.insert(channel_colour[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(beauty + c), 3 * sizeof(float),
+                                              3 * sizeof(float) * static_cast<std::size_t>(info.width)));
+      for (int k = 0; k < 4; ++k) {
+        header.channels().insert(sum_channel(c, k), Imf::Channel(Imf::UINT));
+        fb.insert(sum_channel(c, k), Imf::Slice(Imf::UINT, reinterpret_cast<char*>(words.data() + 4 * c + k), 12 * sizeof(std::uint32_t),
+                                                12 * sizeof(std::uint32_t) * static_cast<std::size_t>(info.width)));
+      }
+    }
+    MemoryStream stream;
+    {
+      Imf::OutputFile out(stream, header);
+      out.setFrameBuffer(fb);
+      out.writePixels(info.height);
+    }
+    return write_file_atomically(path, stream.bytes());
+  } catch (const std::exception& e) {
+    return make_error("write_shard: " + file_error(path, e.what()).message);
+  }
+}
+
+Result<ShardInfo> read_shard_info(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return file_error(path, fs::exists(path, ec) ? "not a regular file" : "no such file");
+  try {
+    Imf::InputFile in(path.c_str());
+    const Imf::Header& header = in.header();
+    const auto* attr = header.findTypedAttribute<Imf::StringAttribute>(shard_attribute);
+    if (attr == nullptr) return file_error(path, "not a shadelab shard (no '" + std::string(shard_attribute) + "' header attribute)");
+    const auto j = nlohmann::json::parse(attr->value(), nullptr, false);
+    if (j.is_discarded() || !j.is_object()) return file_error(path, "the shard description is not JSON");
+    if (j.value("format", std::string()) != shard_format) {
+      return file_error(path, "shard format '" + j.value("format", std::string("?")) + "', this shadelab reads '" + shard_format + "'");
+    }
+    ShardInfo s;
+    try {
+      s.scene_hash = j.at("scene_hash").get<std::string>();
+      s.scene = j.at("scene").get<std::string>();
+      s.renderer = j.at("renderer").get<std::string>();
+      s.seed = j.at("seed").get<std::uint64_t>();
+      s.spp = j.at("spp").get<int>();
+      s.max_depth = j.at("max_depth").get<int>();
+      s.sampling = j.at("sampling").get<std::string>();
+      s.sampler = j.at("sampler").get<std::string>();
+      s.width = j.at("width").get<int>();
+      s.height = j.at("height").get<int>();
+      s.split = j.at("split").get<std::string>();
+      s.index = j.at("index").get<int>();
+      s.count = j.at("count").get<int>();
+      s.sample_begin = j.at("sample_begin").get<int>();
+      s.sample_end = j.at("sample_end").get<int>();
+      s.tile_size = j.at("tile_size").get<int>();
+      s.fixed_point_bits = j.at("fixed_point_bits").get<int>();
+      s.nonfinite_samples = j.at("nonfinite_samples").get<std::uint64_t>();
+    } catch (const nlohmann::json::exception& e) {
+      return file_error(path, std::string("the shard description lacks a field or has a wrong type: ") + e.what());
+    }
+    if (s.split != "samples" && s.split != "tiles") return file_error(path, "split '" + s.split + "' is not samples or tiles");
+    if (s.count < 1 || s.index < 0 || s.index >= s.count) {
+      return file_error(path, "shard " + std::to_string(s.index) + "/" + std::to_string(s.count) + " is out of range");
+    }
+    if (s.spp < 1 || s.spp > 1000000 || s.width < 1 || s.height < 1 || static_cast<long long>(s.width) * s.height > max_image_pixels) {
+      return file_error(path, "spp, width or height out of range");
+    }
+    const auto [b, e] = shard_sample_range(s.spp, s.spec());
+    if (s.sample_begin != b || s.sample_end != e) {
+      return file_error(path, "samples [" + std::to_string(s.sample_begin) + ", " + std::to_string(s.sample_end) +
+                                  ") are not those of shard " + std::to_string(s.index) + "/" + std::to_string(s.count) +
+                                  " (an incomplete or altered part)");
+    }
+    if (s.tile_size != render_tile_size || s.fixed_point_bits != fixed_point_bits) {
+      return file_error(path, "tile size or fixed-point precision of another shadelab version");
+    }
+    const Imath::Box2i dw = header.dataWindow();
+    const Imath::Box2i disp = header.displayWindow();
+    if (dw != disp || dw.min.x != 0 || dw.min.y != 0 || dw.max.x != s.width - 1 || dw.max.y != s.height - 1) {
+      return file_error(path, "the data window is not the " + std::to_string(s.width) + " x " + std::to_string(s.height) + " image");
+    }
+    for (int c = 0; c < 3; ++c) {
+      for (int k = 0; k < 4; ++k) {
+        const Imf::Channel* ch = header.channels().findChannel(sum_channel(c, k));
+        if (ch == nullptr || ch->type != Imf::UINT) return file_error(path, "channel " + sum_channel(c, k) + " missing or not uint");
+      }
+    }
+    if (const Imf::Channel* ch = header.channels().findChannel("nonfinite"); ch == nullptr || ch->type != Imf::UINT) {
+      return file_error(path, "channel nonfinite missing or not uint");
+    }
+    return s;
+  } catch (const std::exception& e) {
+    std::string why = e.what();
+    std::replace(why.begin(), why.end(), '\n', ' ');
+    return file_error(path, "not a readable EXR file: " + why);
+  }
+}
+
+Result<ShardSums> read_shard_sums(const fs::path& path, const ShardInfo& info) {
+  const auto pixels = static_cast<std::size_t>(info.width) * static_cast<std::size_t>(info.height);
+  try {
+    std::vector<std::uint32_t> words(pixels * 12);
+    Imf::InputFile in(path.c_str());
+    Imf::FrameBuffer fb;
+    for (int c = 0; c < 3; ++c) {
+      for (int k = 0; k < 4; ++k) {
+        fb.insert(sum_channel(c, k), Imf::Slice(Imf::UINT, reinterpret_cast<char*>(words.data() + 4 * c + k), 12 * sizeof(std::uint32_t),
+                                                12 * sizeof(std::uint32_t) * static_cast<std::size_t>(info.width)));
+      }
+    }
+    ShardSums out;
+    out.nonfinite.assign(pixels, 0);
+    fb.insert("nonfinite", Imf::Slice(Imf::UINT, reinterpret_cast<char*>(out.nonfinite.data()), sizeof(std::uint32_t),
+                                      sizeof(std::uint32_t) * static_cast<std::size_t>(info.width)));
+    in.setFrameBuffer(fb);
+    in.readPixels(0, info.height - 1);
+    out.sums.resize(pixels);
+    std::uint64_t nonfinite = 0;
+    // No sample adds more than 2^(52 + 40) in magnitude (fixed_sum.h): a larger sum is not a render's, and the
+    // bound keeps the merge's 128-bit additions far from overflow (spp <= 10^6 < 2^20 samples in all).
+    const UInt128 bound = static_cast<UInt128>(info.sample_end - info.sample_begin) << 92u;
+    for (std::size_t p = 0; p < pixels; ++p) {
+      nonfinite += out.nonfinite[p];
+      for (std::size_t c = 0; c < 3; ++c) {
+        const Int128 v = from_words({words[p * 12 + 4 * c], words[p * 12 + 4 * c + 1], words[p * 12 + 4 * c + 2], words[p * 12 + 4 * c + 3]});
+        const UInt128 magnitude = v < 0 ? static_cast<UInt128>(0) - static_cast<UInt128>(v) : static_cast<UInt128>(v);
+        if (magnitude > bound) {
+          return file_error(path, "pixel (" + std::to_string(p % static_cast<std::size_t>(info.width)) + ", " +
+                                      std::to_string(p / static_cast<std::size_t>(info.width)) + ") has a sum larger than its samples can give (an altered part)");
+        }
+        out.sums[p].c[c] = v;
+      }
+    }
+    if (nonfinite != info.nonfinite_samples) {
+      return file_error(path, "the nonfinite channel adds up to " + std::to_string(nonfinite) + ", the header says " +
+                                  std::to_string(info.nonfinite_samples) + " (an altered part)");
+    }
+    return out;
+  } catch (const std::exception& e) {
+    std::string why = e.what();
+    std::replace(why.begin(), why.end(), '\n', ' ');
+    return file_error(path, "cannot read the shard's sums: " + why);
+  }
+}
+
+Result<MergeStatus> check_shards(const std::vector<fs::path>& parts) {
+  if (parts.empty()) return make_error("no parts given");
+  MergeStatus status;
+  std::map<int, fs::path> seen;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    auto info = read_shard_info(parts[k]);
+    if (!info) return info.error();
+    if (k == 0) {
+      status.first = *info;
+    } else {
+      const auto want = status.first.render_identity();
+      const auto got = info->render_identity();
+      for (std::size_t f = 0; f < want.size(); ++f) {
+        if (want[f].second != got[f].second) {
+          return file_error(parts[k], "from another render: " + got[f].first + " " + got[f].second + ", but " + want[f].second +
+                                          " in '" + parts[0].string() + "'");
+        }
+      }
+    }
+    if (const auto it = seen.find(info->index); it != seen.end()) {
+      return file_error(parts[k], "shard " + std::to_string(info->index) + "/" + std::to_string(info->count) +
+                                      " again (also '" + it->second.string() + "')");
+    }
+    seen.emplace(info->index, parts[k]);
+    status.nonfinite_samples += info->nonfinite_samples;
+  }
+  for (int i = 0; i < status.first.count; ++i) (seen.count(i) != 0 ? status.present : status.missing).push_back(i);
+  return status;
+}
+
+Result<MergedRender> merge_shards(const std::vector<fs::path>& parts, const std::function<void(double)>& progress) {
+  auto status = check_shards(parts);
+  if (!status) return status.error();
+  const ShardInfo& first = status->first;
+  if (!status->missing.empty()) {
+    std::string list;
+    for (std::size_t k = 0; k < status->missing.size() && k < 8; ++k) list += (k ? ", " : "") + std::to_string(status->missing[k]);
+    if (status->missing.size() > 8) list += ", ...";
+    return make_error(std::to_string(status->missing.size()) + " of " + std::to_string(first.count) + " shards missing (index " + list +
+                      "): no part of " + std::to_string(parts.size()) + " given, starting with '" + parts[0].string() + "', is one");
+  }
+  MergedRender merged;
+  merged.status = *status;
+  RenderResult& r = merged.result;
+  r.sums.assign(static_cast<std::size_t>(first.width) * static_cast<std::size_t>(first.height), FixedRgb{});
+  r.nonfinite.assign(r.sums.size(), 0);
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    auto info = read_shard_info(parts[k]);  // the file may have changed since check_shards
+    if (!info) return info.error();
+    if (info->render_identity() != first.render_identity()) return file_error(parts[k], "changed while merging");
+    auto sums = read_shard_sums(parts[k], *info);
+    if (!sums) return sums.error();
+    for (std::size_t p = 0; p < r.sums.size(); ++p) {
+      r.sums[p] += sums->sums[p];
+      r.nonfinite[p] += sums->nonfinite[p];
+    }
+    if (progress) progress(static_cast<double>(k + 1) / static_cast<double>(parts.size()));
+  }
+  r.sample_begin = 0;
+  r.sample_end = first.spp;
+  r.beauty = image_from_sums(r.sums, r.nonfinite, first.width, first.height, static_cast<std::uint64_t>(first.spp));
+  r.stats.spp_done = first.spp;
+  r.stats.nonfinite_samples = status->nonfinite_samples;
+  return merged;
+}
+
+}  // namespace shadelab

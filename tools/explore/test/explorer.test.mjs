@@ -1,0 +1,224 @@
+// The explorer in a real browser: Debian's headless Chromium (never a downloaded one) driven by
+// playwright-core, on the site `shadelab explore --out` writes, loaded from file:// (docs/explorer.md).
+//   - the figures in the DOM (#shadelab-state) equal `shadelab brdf albedo/eval --json` to 1e-12 relative;
+//   - the URL state round-trips (a link reproduces the view, a changed control changes the URL);
+//   - a bad URL parameter shows a message naming it, the page still draws; no console error otherwise;
+//   - the WebGL 2 sphere (the exported GLSL ES) matches `shadelab render --mode game` of the same scene
+//     within a mean absolute difference of 1/255 per channel, after the same display transform.
+// Environment: SHADELAB_EXE (the CLI), CHROMIUM (default /usr/bin/chromium), SHADELAB_EXPLORER_SCREENSHOTS
+// (a folder: also save the docs' screenshots there).
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const exe = process.env.SHADELAB_EXE;
+if (!exe) throw new Error('SHADELAB_EXE must name the shadelab binary');
+const work = fs.mkdtempSync(path.join(os.tmpdir(), 'shadelab-explorer-'));
+const site = path.join(work, 'site');
+const shots = process.env.SHADELAB_EXPLORER_SCREENSHOTS;
+let browser;
+let page;
+const consoleErrors = [];
+
+function cli(args) { return execFileSync(exe, args, { encoding: 'utf8', maxBuffer: 64 << 20 }); }
+function cliJson(args) { return JSON.parse(cli(args)); }
+
+async function open(query) {
+  // A fresh document each time: ready counts the page's updates from 1.
+  await page.goto(pathToFileURL(path.join(site, 'index.html')).href + query);
+  await page.waitForFunction(() => document.body.dataset.ready ||
+                                   document.getElementById('shadelab-status').textContent === 'failed', null, { timeout: 60000 });
+  return JSON.parse(await page.locator('#shadelab-state').textContent());
+}
+
+function relClose(actual, expected, what) {
+  for (let i = 0; i < expected.length; ++i) {
+    const e = expected[i], a = actual[i];
+    const rel = Math.abs(a - e) / Math.max(Math.abs(e), 1e-300);
+    assert.ok(a === e || rel <= 1e-12, `${what}[${i}]: page ${a}, CLI ${e} (relative ${rel})`);
+  }
+}
+
+before(async () => {
+  cli(['explore', '--out', site]);
+  browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run',
+           '--disable-background-networking', '--disable-component-update', '--disable-sync', '--disable-extensions',
+           '--allow-file-access-from-files'],
+  });
+  page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+  page.on('pageerror', (e) => consoleErrors.push(String(e)));
+});
+
+after(async () => {
+  if (browser) await browser.close();
+  fs.rmSync(work, { recursive: true, force: true });
+});
+
+const CASES = [
+  { model: 'phong', params: { kd: '0', ks: '1', n: '100' }, theta: '0,45', wi: '0.3,0.1,0.9', wo: '-0.4,0,0.8' },
+  { model: 'blinn-phong-modified', params: { n: '300', kd: '0.1,0.35,0.12', ks: '0.2' }, theta: '0,30,60,85', wi: '0,0,1', wo: '0.5,0.5,0.7' },
+  { model: 'cook-torrance', params: { kd: '0', ks: '1', d: 'beckmann', g: 'smith', f: 'schlick', f0: '1,0.78,0.34', m: '0.15' },
+    theta: '10,70', wi: '0.2,0,1', wo: '-0.3,0.05,1' },
+  { model: 'ward-anisotropic', params: { kd: '0.05', ks: '0.6', alpha_x: '0.3', alpha_y: '0.05' }, theta: '0,50,89',
+    wi: '0.1,0.4,0.9', wo: '0.2,-0.3,0.9' },
+  { model: 'wrapped-diffuse', params: { kd: '0.7,0.5,0.3', w: '0.5' }, theta: '0,75', wi: '0.9,0,0.1', wo: '0,0,1' },
+];
+
+function query(c) {
+  const q = new URLSearchParams({ model: c.model, ...c.params, theta: c.theta, wi: c.wi, wo: c.wo });
+  return '?' + q.toString().replace(/%2C/g, ',');
+}
+
+test('albedo and probed f_r in the DOM equal the CLI to 1e-12', async () => {
+  for (const c of CASES) {
+    const s = await open(query(c));
+    assert.deepEqual(s.errors, [], `${c.model}: ${s.errors}`);
+    assert.equal(s.model, c.model);
+    for (const [k, v] of Object.entries(c.params)) assert.equal(s.params[k], v);
+    const p = Object.entries(c.params).flatMap(([k, v]) => ['-p', `${k}=${v}`]);
+    const albedo = cliJson(['brdf', 'albedo', c.model, ...p, '--json', '--theta', ...c.theta.split(',')]);
+    assert.deepEqual(s.theta, albedo.theta);
+    assert.equal(s.albedo.length, albedo.albedo.length);
+    albedo.albedo.forEach((a, i) => relClose(s.albedo[i], a, `${c.model} albedo at ${albedo.theta[i]}`));
+    const ev = cliJson(['brdf', 'eval', c.model, ...p, '--wi', c.wi, '--wo', c.wo, '--json']);
+    relClose(s.probe.f, ev.f, `${c.model} f`);
+    assert.deepEqual(s.probe.wi, c.wi.split(',').map(Number));
+  }
+  // The zoo table at the model's exponent is the CLI's.
+  const s = await open(query(CASES[0]));
+  const zoo = cliJson(['zoo', '--n', '100', '--json']);
+  assert.equal(s.zoo.rows.length, zoo.rows.length);
+  zoo.rows.forEach((r, i) => relClose([s.zoo.rows[i].numeric, s.zoo.rows[i].closed_form_value], [r.numeric, r.closed_form_value], `zoo ${r.model}`));
+});
+
+test('the exported shader of the export button is the CLI export', async () => {
+  await open(query(CASES[0]));
+  await page.selectOption('#shadelab-export-lang', 'hlsl');
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#shadelab-export')]);
+  const text = fs.readFileSync(await download.path(), 'utf8');
+  // The page passes the parameters in the registry's order (kd, ks, n), as CASES[0] lists them.
+  const p = Object.entries(CASES[0].params).flatMap(([k, v]) => ['--param', `${k}=${v}`]);
+  assert.equal(text, cli(['shader', 'phong', ...p, '--lang', 'hlsl']));
+});
+
+test('the URL state round-trips', async () => {
+  const first = await open(query(CASES[1]) + '&units=radiometric&light=3&exposure=-1&scale=log&cos=1&theta_in=30');
+  assert.deepEqual(first.errors, []);
+  // The page rewrote the URL into its canonical query; loading that reproduces the same state.
+  assert.equal(new URL(page.url()).search, first.query);
+  const again = await open(first.query);
+  for (const s of [first, again]) delete s.update_ms;
+  assert.deepEqual(again, first);
+  assert.equal(first.view.units, 'radiometric');
+  assert.equal(first.lobe.theta_in, 30);
+  // A changed control changes the URL, and the new URL reproduces it.
+  const before = await page.evaluate(() => document.body.dataset.ready);
+  await page.fill('#shadelab-param-n', '40');
+  await page.dispatchEvent('#shadelab-param-n', 'change');
+  await page.waitForFunction((b) => document.body.dataset.ready !== b, before);
+  const changed = JSON.parse(await page.locator('#shadelab-state').textContent());
+  assert.equal(changed.params.n, '40');
+  assert.match(page.url(), /[?&]n=40(&|$)/);
+  const reloaded = await open(new URL(page.url()).search);
+  assert.equal(reloaded.params.n, '40');
+  relClose(reloaded.albedo.flat(), changed.albedo.flat(), 'albedo after reload');
+});
+
+test('a bad URL parameter shows a message naming it and the page still draws', async () => {
+  for (const [q, name] of [['?model=phong&n=-1', "'n'"], ['?model=no-such-model', "'model'"], ['?model=phong&colour=1', "'colour'"],
+                           ['?model=phong&theta=0,95', "'theta'"], ['?model=phong&wi=1,2', "'wi'"], ['?model=lambert&kd=abc', "'kd'"]]) {
+    const s = await open(q);
+    const box = page.locator('#shadelab-error');
+    assert.ok(await box.isVisible(), q);
+    assert.ok((await box.textContent()).includes(name), `${q}: ${await box.textContent()}`);
+    assert.ok(s.albedo.length > 0 && s.probe.f.length === 3, `${q}: no figures`);
+  }
+  const ok = await open('?model=phong');
+  assert.deepEqual(ok.errors, []);
+  assert.ok(!(await page.locator('#shadelab-error').isVisible()));
+});
+
+// The scene `shadelab render --mode game` renders for the page's sphere state.
+function sceneFor(s) {
+  const value = (v) => {
+    const parts = String(v).split(',');
+    if (parts.every((x) => x.trim() !== '' && Number.isFinite(Number(x)))) return parts.length === 1 ? Number(v) : parts.map(Number);
+    return v;
+  };
+  const params = Object.fromEntries(Object.entries(s.params).map(([k, v]) => [k, value(v)]));
+  const sp = s.sphere;
+  const colour = sp.light.length === 1 ? [sp.light[0], sp.light[0], sp.light[0]] : sp.light;
+  return {
+    units: sp.units,
+    camera: { position: sp.camera.position, look_at: sp.camera.look_at, up: sp.camera.up, fov: sp.camera.fov, width: sp.width, height: sp.height },
+    materials: { m: { model: s.model, params } },
+    shapes: [{ type: 'sphere', center: sp.center, radius: sp.radius, material: 'm' }],
+    lights: [{ type: 'point', position: sp.light_position, color: colour, intensity: 1 }],
+  };
+}
+
+async function pngPixels(file) {
+  const data = fs.readFileSync(file).toString('base64');
+  return page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = 'data:image/png;base64,' + b64;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width; c.height = img.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    return Array.from(ctx.getImageData(0, 0, img.width, img.height).data);
+  }, data);
+}
+
+test('the WebGL 2 sphere matches the C++ game renderer within 1/255 mean absolute difference', async () => {
+  const views = [
+    '?model=blinn-phong-modified&n=300&kd=0.1,0.35,0.12&ks=0.2&units=game&light=2&light_pos=2,2,3',
+    '?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&units=radiometric&light=20&light_pos=-2,3,4&exposure=-1',
+    '?model=lambert&kd=0.8&units=game&light=1&light_pos=0,0,5&tone=filmic&exposure=1',
+  ];
+  for (const [i, q] of views.entries()) {
+    const s = await open(q);
+    assert.deepEqual(s.errors, [], q);
+    const shown = await page.evaluate(() => window.shadelabSpherePixels());
+    const scene = path.join(work, `sphere${i}.json`);
+    fs.writeFileSync(scene, JSON.stringify(sceneFor(s)));
+    const exr = path.join(work, `sphere${i}.exr`), png = path.join(work, `sphere${i}.png`);
+    const args = ['render', scene, '--mode', 'game', '--spp', String(s.sphere.spp), '--out', exr, '--png', png,
+                  '--exposure', String(s.sphere.exposure)];
+    if (s.sphere.tone === 'filmic') args.push('--filmic');
+    cli(args);
+    const ref = await pngPixels(png);
+    assert.equal(ref.length, shown.rgba.length);
+    let sum = 0, lit = 0, max = 0;
+    for (let k = 0; k < ref.length; ++k) {
+      if (k % 4 === 3) continue;
+      const d = Math.abs(ref[k] - shown.rgba[k]);
+      sum += d; max = Math.max(max, d);
+      if (shown.rgba[k] > 0) ++lit;
+    }
+    const mean = sum / (ref.length * 3 / 4);
+    console.log(`sphere ${s.model} (${s.sphere.units}): mean |difference| ${mean.toFixed(4)} / 255, max ${max}, lit channels ${lit}`);
+    assert.ok(lit > ref.length / 10, `${q}: the sphere is black`);
+    assert.ok(mean <= 1.0, `${q}: mean absolute difference ${mean} / 255`);
+  }
+});
+
+test('no console error on any page load', async () => {
+  if (shots) {
+    fs.mkdirSync(shots, { recursive: true });
+    await open('?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&units=game&light=2&light_pos=2,2,3&scale=log');
+    await page.screenshot({ path: path.join(shots, 'explorer.png'), fullPage: true });
+    await open('?model=phong&n=-1');
+    await page.locator('#shadelab-error').screenshot({ path: path.join(shots, 'explorer-error.png') });
+  }
+  assert.deepEqual(consoleErrors, []);
+});

@@ -1,0 +1,589 @@
+// shadelab explorer (docs/explorer.md). Every number on this page comes from the library compiled to
+// WebAssembly (shadelab_wasm.js, tools/explore/wasm/explore_api.cpp) or from its exported GLSL ES run in
+// WebGL 2; this file only parses the URL, lays out controls and draws. It evaluates no formula itself.
+'use strict';
+
+(function () {
+  const $ = (id) => document.getElementById(id);
+  let lib = null;
+  let models = [];
+
+  // Query keys that are not model parameters, with their defaults (strings, as in the URL).
+  const VIEW_DEFAULTS = {
+    theta: '0,15,30,45,60,75,85,89',
+    wi: '0,0,1',
+    wo: '0.5,0,0.8660254037844387',
+    theta_in: '45',
+    fixed: 'light',
+    scale: 'linear',
+    cos: '0',
+    units: 'game',
+    light_pos: '2,2,3',
+    light: '1',
+    exposure: '0',
+    tone: 'clamp',
+  };
+  const DEFAULT_MODEL = 'blinn-phong-modified';
+  // The sphere's view: the C++ game renderer's pinhole camera (render/game_renderer.cpp) with these values;
+  // the tests render the same scene with `shadelab render --mode game` (docs/explorer.md).
+  const SPHERE = { center: [0, 0, 0], radius: 1, camera: { position: [0, 0, 4], look_at: [0, 0, 0], up: [0, 1, 0], fov: 35 },
+                   spp: 4 };
+  const ALBEDO_CURVE = [0, 5, 10, 15, 20, 25, 30, 35, 40, 45, 50, 55, 60, 65, 70, 75, 80, 85, 89];
+
+  let state = null;
+  let errors = [];
+
+  function call(request) {
+    const text = lib.ccall('shadelab_call', 'string', ['string'], [JSON.stringify(request)]);
+    return JSON.parse(text);
+  }
+
+  function modelInfo(name) { return models.find((m) => m.name === name); }
+
+  // A parameter's value: set explicitly, or the registry's default.
+  function effective(name) {
+    if (name in state.params) return state.params[name];
+    return modelInfo(state.model).params.find((p) => p.name === name).default;
+  }
+
+  // Sets a parameter; where the library refuses the combination (alternatives such as m and n), the other
+  // explicitly set parameters that conflict are dropped, so the last one set wins. Returns the error, if any.
+  function setParam(name, value) {
+    const ok = (params) => !call({ op: 'eval', model: state.model, params, wi: [0, 0, 1], wo: [0, 0, 1] }).error;
+    const alone = call({ op: 'eval', model: state.model, params: { [name]: value }, wi: [0, 0, 1], wo: [0, 0, 1] });
+    if (alone.error) return alone.error;
+    const next = Object.assign({}, state.params, { [name]: value });
+    for (const other of Object.keys(next)) {
+      if (ok(next)) break;
+      if (other !== name) delete next[other];
+    }
+    state.params = next;
+    return null;
+  }
+
+  function showErrors() {
+    const box = $('shadelab-error');
+    box.hidden = errors.length === 0;
+    box.textContent = errors.join('\n');
+  }
+
+  function numbers(text, count, key) {
+    const parts = String(text).split(',').map((s) => s.trim());
+    const values = parts.map(Number);
+    if (parts.some((s) => s === '') || values.some((v) => !Number.isFinite(v)) || (count && values.length !== count)) {
+      throw new Error(`URL parameter '${key}': '${text}' is not ${count ? count + ' numbers x,y,z' : 'a list of numbers'}`);
+    }
+    return values;
+  }
+
+  // The state from a query string; bad entries are reported (naming the parameter) and replaced by defaults.
+  function stateFromQuery(search) {
+    const q = new URLSearchParams(search);
+    const problems = [];
+    let model = q.get('model') || DEFAULT_MODEL;
+    if (!modelInfo(model)) {
+      problems.push(`URL parameter 'model': unknown model '${model}' (models: ${models.map((m) => m.name).join(', ')})`);
+      model = DEFAULT_MODEL;
+    }
+    const info = modelInfo(model);
+    const params = {};  // the parameters set explicitly; the others keep the registry's defaults
+    for (const [key, value] of q.entries()) {
+      if (key === 'model' || key in VIEW_DEFAULTS) continue;
+      if (!info.params.some((p) => p.name === key)) {
+        problems.push(`URL parameter '${key}': not a parameter of ${model} (its parameters: ${info.params.map((p) => p.name).join(', ')})`);
+        continue;
+      }
+      // Each parameter alone through the library's own validation, so that the message names it.
+      // Each parameter through the library's own validation, alone and with those before it (the library
+      // refuses alternatives given together, such as cook-torrance's m and n), so the message names it.
+      let probe = call({ op: 'eval', model, params: { [key]: value }, wi: [0, 0, 1], wo: [0, 0, 1] });
+      if (!probe.error) probe = call({ op: 'eval', model, params: Object.assign({}, params, { [key]: value }), wi: [0, 0, 1], wo: [0, 0, 1] });
+      if (probe.error) problems.push(`URL parameter '${key}': ${probe.error}`);
+      else params[key] = value;
+    }
+    const view = {};
+    for (const key of Object.keys(VIEW_DEFAULTS)) view[key] = q.has(key) ? q.get(key) : VIEW_DEFAULTS[key];
+    const checks = {
+      theta: () => { numbers(view.theta, 0, 'theta').forEach((t) => { if (!(t >= 0 && t < 90)) throw new Error(`URL parameter 'theta': ${t} is out of range [0, 90) degrees`); }); },
+      wi: () => numbers(view.wi, 3, 'wi'),
+      wo: () => numbers(view.wo, 3, 'wo'),
+      light_pos: () => numbers(view.light_pos, 3, 'light_pos'),
+      light: () => { const v = numbers(view.light, 0, 'light'); if (!(v.length === 1 || v.length === 3) || v.some((x) => x < 0)) throw new Error(`URL parameter 'light': '${view.light}' is not a value or r,g,b >= 0`); },
+      theta_in: () => { const t = Number(view.theta_in); if (!(t >= 0 && t < 90)) throw new Error(`URL parameter 'theta_in': '${view.theta_in}' is out of range [0, 90) degrees`); },
+      exposure: () => { const e = Number(view.exposure); if (!Number.isFinite(e) || Math.abs(e) > 64) throw new Error(`URL parameter 'exposure': '${view.exposure}' is not a number in [-64, 64] stops`); },
+      fixed: () => { if (!['light', 'viewer'].includes(view.fixed)) throw new Error(`URL parameter 'fixed': '${view.fixed}' is not light or viewer`); },
+      scale: () => { if (!['linear', 'log'].includes(view.scale)) throw new Error(`URL parameter 'scale': '${view.scale}' is not linear or log`); },
+      cos: () => { if (!['0', '1'].includes(view.cos)) throw new Error(`URL parameter 'cos': '${view.cos}' is not 0 or 1`); },
+      units: () => { if (!['game', 'radiometric'].includes(view.units)) throw new Error(`URL parameter 'units': '${view.units}' is not game or radiometric`); },
+      tone: () => { if (!['clamp', 'filmic'].includes(view.tone)) throw new Error(`URL parameter 'tone': '${view.tone}' is not clamp or filmic`); },
+    };
+    for (const [key, check] of Object.entries(checks)) {
+      try { check(); } catch (e) { problems.push(e.message); view[key] = VIEW_DEFAULTS[key]; }
+    }
+    return { state: { model, params, view }, problems };
+  }
+
+  function queryFromState(s) {
+    const q = new URLSearchParams();
+    q.set('model', s.model);
+    for (const [k, v] of Object.entries(s.params)) q.set(k, v);
+    for (const [k, v] of Object.entries(s.view)) q.set(k, v);
+    return '?' + q.toString().replace(/%2C/g, ',');
+  }
+
+  // ---- controls ---------------------------------------------------------------------------------------
+  function sliderMapping(p) {
+    // A log slider for wide positive ranges (exponents up to 1e6), linear otherwise.
+    const log = p.min >= 0 && p.max > 1000;
+    return log
+      ? { to: (v) => Math.log10(v + 1) / Math.log10(p.max + 1), from: (t) => Math.pow(10, t * Math.log10(p.max + 1)) - 1 }
+      : { to: (v) => (v - p.min) / (p.max - p.min), from: (t) => p.min + t * (p.max - p.min) };
+  }
+
+  function buildParamControls() {
+    const form = $('shadelab-params');
+    form.textContent = '';
+    const info = modelInfo(state.model);
+    $('shadelab-formula').textContent = `f_r = ${info.formula}  (${info.source})`;
+    for (const p of info.params) {
+      const row = document.createElement('div');
+      row.className = 'param';
+      row.title = p.description;
+      const label = document.createElement('label');
+      label.textContent = p.name;
+      row.appendChild(label);
+      let field;
+      if (p.kind === 'choice') {
+        field = document.createElement('select');
+        for (const c of p.choices) { const o = document.createElement('option'); o.textContent = c; field.appendChild(o); }
+        field.value = effective(p.name);
+        field.addEventListener('change', () => { setParam(p.name, field.value); changed(); });
+        row.appendChild(field);
+        row.appendChild(document.createElement('span'));
+      } else {
+        const slider = document.createElement('input');
+        slider.type = 'range'; slider.min = 0; slider.max = 1000; slider.step = 1;
+        field = document.createElement('input');
+        field.type = 'text';
+        field.value = effective(p.name);
+        const map = sliderMapping(p);
+        const first = Number(String(field.value).split(/[,;]/)[0]);
+        slider.value = Number.isFinite(first) ? Math.round(1000 * map.to(first)) : 0;
+        slider.disabled = p.kind !== 'scalar';
+        slider.addEventListener('input', () => {
+          const v = map.from(slider.value / 1000);
+          field.value = String(Number(v.toPrecision(4)));
+          errors = [];
+          const e = setParam(p.name, field.value);
+          if (e) errors = [e];
+          showErrors();
+          changed();
+        });
+        field.addEventListener('change', () => {
+          const e = setParam(p.name, field.value);
+          errors = e ? [e] : [];
+          showErrors();
+          if (!e) changed();
+        });
+        field.id = `shadelab-param-${p.name}`;
+        slider.id = `shadelab-slider-${p.name}`;
+        row.appendChild(slider);
+        row.appendChild(field);
+      }
+      form.appendChild(row);
+    }
+  }
+
+  const VIEW_FIELDS = { theta: 'shadelab-theta', wi: 'shadelab-wi', wo: 'shadelab-wo', theta_in: 'shadelab-theta-in',
+                        fixed: 'shadelab-fixed', scale: 'shadelab-scale', units: 'shadelab-units', light_pos: 'shadelab-light-pos',
+                        light: 'shadelab-light', exposure: 'shadelab-exposure', tone: 'shadelab-tone' };
+
+  function syncViewControls() {
+    $('shadelab-model').value = state.model;
+    for (const [key, id] of Object.entries(VIEW_FIELDS)) $(id).value = state.view[key];
+    $('shadelab-cos').checked = state.view.cos === '1';
+  }
+
+  function buildViewControls() {
+    const select = $('shadelab-model');
+    for (const m of models) { const o = document.createElement('option'); o.textContent = m.name; select.appendChild(o); }
+    select.addEventListener('change', () => {
+      const info = modelInfo(select.value);
+      state.model = info.name;
+      state.params = {};
+      buildParamControls();
+      changed();
+    });
+    for (const [key, id] of Object.entries(VIEW_FIELDS)) {
+      $(id).addEventListener(key === 'exposure' ? 'input' : 'change', () => {
+        const trial = Object.assign({}, state.view, { [key]: $(id).value });
+        const parsed = stateFromQuery(queryFromState({ model: state.model, params: state.params, view: trial }));
+        errors = parsed.problems;
+        showErrors();
+        if (errors.length === 0) { state.view = parsed.state.view; changed(); }
+      });
+    }
+    $('shadelab-cos').addEventListener('change', () => { state.view.cos = $('shadelab-cos').checked ? '1' : '0'; changed(); });
+    $('shadelab-export').addEventListener('click', () => {
+      const lang = $('shadelab-export-lang').value;
+      const r = call({ op: 'shader', model: state.model, params: state.params, lang });
+      const text = r.error ? r.error : r.text;
+      const pre = $('shadelab-export-text');
+      pre.hidden = false;
+      pre.textContent = text;
+      if (!r.error) {
+        const a = document.createElement('a');
+        a.href = URL.createObjectURL(new Blob([text], { type: 'text/plain' }));
+        a.download = `${state.model}.${lang === 'hlsl' ? 'hlsl' : lang === 'essl' ? 'essl.glsl' : 'glsl'}`;
+        document.body.appendChild(a);
+        a.click();
+        a.remove();
+      }
+    });
+  }
+
+  // ---- drawing (no formulas: the values are the library's) ------------------------------------------
+  function axes(ctx, w, h) {
+    ctx.clearRect(0, 0, w, h);
+    ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, w, h);
+    ctx.strokeStyle = '#bbb'; ctx.lineWidth = 1;
+  }
+
+  function scaleValue(v, max, log) {
+    if (!log) return max > 0 ? v / max : 0;
+    const lo = Math.log10(max) - 4;  // four decades
+    return v > 0 ? Math.max(0, (Math.log10(v) - lo) / 4) : 0;
+  }
+
+  function drawLobe(lobe) {
+    const c = $('shadelab-lobe'); const ctx = c.getContext('2d');
+    axes(ctx, c.width, c.height);
+    const ox = c.width / 2, oy = c.height - 12, r = Math.min(ox, oy) - 8;
+    ctx.beginPath(); ctx.moveTo(8, oy); ctx.lineTo(c.width - 8, oy); ctx.stroke();
+    ctx.beginPath(); ctx.arc(ox, oy, r, Math.PI, 0); ctx.stroke();
+    const max = Math.max(...lobe.luminance);
+    const log = state.view.scale === 'log';
+    const fixedAngle = -Number(state.view.theta_in) * Math.PI / 180;
+    ctx.strokeStyle = '#e65100';
+    ctx.beginPath(); ctx.moveTo(ox, oy); ctx.lineTo(ox + r * Math.sin(fixedAngle), oy - r * Math.cos(fixedAngle)); ctx.stroke();
+    ctx.strokeStyle = '#1565c0'; ctx.lineWidth = 2; ctx.beginPath();
+    lobe.angle.forEach((a, i) => {
+      const s = r * scaleValue(lobe.luminance[i], max, log);
+      const x = ox + s * Math.sin(a * Math.PI / 180), y = oy - s * Math.cos(a * Math.PI / 180);
+      if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+    });
+    ctx.stroke();
+    ctx.fillStyle = '#333'; ctx.font = '11px sans-serif';
+    ctx.fillText(`max ${max.toPrecision(4)} 1/sr (${log ? 'log, 4 decades' : 'linear'})`, 8, 14);
+  }
+
+  function drawLobe3d(grid) {
+    const c = $('shadelab-lobe3d'); const ctx = c.getContext('2d');
+    axes(ctx, c.width, c.height);
+    const max = Math.max(...grid.luminance.flat());
+    const log = state.view.scale === 'log';
+    const ox = c.width / 2, oy = c.height * 0.8, r = c.height * 0.7;
+    // An oblique view: x right, z up, y into the page (tilted by 30 degrees).
+    const project = (t, p, s) => {
+      const x = Math.sin(t) * Math.cos(p) * s, y = Math.sin(t) * Math.sin(p) * s, z = Math.cos(t) * s;
+      return [ox + r * (x + 0.35 * y), oy - r * (z + 0.35 * y * 0.5)];
+    };
+    ctx.strokeStyle = '#1565c0'; ctx.lineWidth = 0.7;
+    const nt = grid.n_theta, np = grid.n_phi;
+    for (let i = 0; i < nt; ++i) {
+      ctx.beginPath();
+      for (let j = 0; j <= np; ++j) {
+        const t = (Math.PI / 2) * i / (nt - 1), p = 2 * Math.PI * (j % np) / np;
+        const [x, y] = project(t, p, scaleValue(grid.luminance[i][j % np], max, log));
+        if (j === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+      }
+      ctx.stroke();
+    }
+    for (let j = 0; j < np; j += 2) {
+      ctx.beginPath();
+      for (let i = 0; i < nt; ++i) {
+        const t = (Math.PI / 2) * i / (nt - 1), p = 2 * Math.PI * j / np;
+        const [x, y] = project(t, p, scaleValue(grid.luminance[i][j], max, log));
+        if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+      }
+      ctx.stroke();
+    }
+  }
+
+  function drawAlbedo(curve) {
+    const c = $('shadelab-albedo'); const ctx = c.getContext('2d');
+    axes(ctx, c.width, c.height);
+    const x0 = 30, y0 = c.height - 20, w = c.width - 40, h = c.height - 40;
+    const top = Math.max(1.1, ...curve.albedo.flat()) * 1.05;
+    ctx.beginPath(); ctx.moveTo(x0, y0 - h); ctx.lineTo(x0, y0); ctx.lineTo(x0 + w, y0); ctx.stroke();
+    ctx.setLineDash([4, 3]); ctx.strokeStyle = '#000';
+    ctx.beginPath(); ctx.moveTo(x0, y0 - h / top); ctx.lineTo(x0 + w, y0 - h / top); ctx.stroke();
+    ctx.setLineDash([]);
+    ['#c62828', '#2e7d32', '#1565c0'].forEach((colour, k) => {
+      ctx.strokeStyle = colour; ctx.lineWidth = 1.5; ctx.beginPath();
+      curve.theta.forEach((t, i) => {
+        const x = x0 + w * t / 90, y = y0 - h * curve.albedo[i][k] / top;
+        if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+      });
+      ctx.stroke();
+    });
+    ctx.fillStyle = '#333'; ctx.font = '11px sans-serif';
+    ctx.fillText('1 (energy)', x0 + 4, y0 - h / top - 3);
+    ctx.fillText('theta_o (deg) 0 .. 90', x0 + w - 110, y0 + 14);
+  }
+
+  function fillTables(albedo, probe, zoo) {
+    const t = $('shadelab-albedo-table');
+    t.innerHTML = '<tr><th>theta</th><th>albedo r</th><th>g</th><th>b</th></tr>';
+    albedo.theta.forEach((th, i) => {
+      const tr = t.insertRow();
+      [th, ...albedo.albedo[i]].forEach((v) => { tr.insertCell().textContent = String(v); });
+    });
+    $('shadelab-probe').textContent = `f_r(wi = ${probe.wi.join(', ')}; wo = ${probe.wo.join(', ')}) = ${probe.f.join(', ')} 1/sr`;
+    const z = $('shadelab-zoo');
+    z.innerHTML = `<caption>the normalization zoo at n = ${zoo.n}</caption><tr><th class="text">model</th><th class="text">closed form</th>` +
+      '<th>closed value</th><th>numeric</th><th>rel. error</th><th>bounds</th></tr>';
+    for (const r of zoo.rows) {
+      const tr = z.insertRow();
+      tr.insertCell().textContent = r.model; tr.cells[0].className = 'text';
+      tr.insertCell().textContent = r.closed_form; tr.cells[1].className = 'text';
+      tr.insertCell().textContent = r.closed_form_value.toPrecision(9);
+      tr.insertCell().textContent = r.numeric.toPrecision(9);
+      tr.insertCell().textContent = r.relative_error.toExponential(1);
+      tr.insertCell().textContent = r.lower !== null ? `${r.lower.toPrecision(6)} .. ${r.upper.toPrecision(6)}` : '-';
+    }
+  }
+
+  // ---- the sphere: the exported GLSL ES in WebGL 2 ------------------------------------------------------
+  let gl = null, program = null, programSource = '', sphereError = '';
+  let displayKernels = null;
+
+  const VERTEX = `#version 300 es
+in vec2 p;
+void main() { gl_Position = vec4(p, 0.0, 1.0); }
+`;
+
+  function fragmentSource(modelText, entry) {
+    // The exported model (its kernels, the punctual term in both unit conventions and the inverse-square law
+    // of kernels/game_shading.sl) and kernels/display.sl; the rest is the camera and sphere geometry.
+    return `#version 300 es
+precision highp float;
+precision highp int;
+${modelText}
+${displayKernels}
+uniform vec2 u_size;
+uniform vec3 u_eye, u_forward, u_right, u_up;
+uniform float u_tan_half;
+uniform int u_spp_side;
+uniform vec3 u_light_pos, u_light;
+uniform int u_units;
+uniform float u_exposure;
+uniform int u_tone;
+out vec4 o_colour;
+
+// The radiance along a camera ray: the sphere (centre 0, radius ${SPHERE.radius.toFixed(1)}) under the point light, black behind.
+vec3 radiance(vec3 d) {
+  float b = dot(u_eye, d);
+  float c = dot(u_eye, u_eye) - ${(SPHERE.radius * SPHERE.radius).toFixed(1)};
+  float disc = b * b - c;
+  if (disc < 0.0) return vec3(0.0);
+  float t = -b - sqrt(disc);
+  if (t <= 0.0) return vec3(0.0);
+  vec3 n = normalize(u_eye + d * t);
+  vec3 pos = n * ${SPHERE.radius.toFixed(1)};
+  // The renderer's frame on a sphere (render/accel.cpp, materials.cpp): tangent along (-n.z, 0, n.x).
+  vec3 s = vec3(-n.z, 0.0, n.x);
+  s = length(s) > 1.0e-6 ? normalize(s) : vec3(1.0, 0.0, 0.0);
+  vec3 tb = cross(n, s);
+  mat3 to_local = transpose(mat3(s, tb, n));
+  vec3 to_light = u_light_pos - pos;
+  float d2 = dot(to_light, to_light);
+  if (!(d2 > 0.0)) return vec3(0.0);
+  vec3 wi = to_local * normalize(to_light);
+  vec3 wo = to_local * (-d);
+  vec3 e = point_light_irradiance(u_light, d2);
+  return u_units == 0 ? ${entry}_punctual_game(wi, wo, e) : ${entry}_punctual_radiometric(wi, wo, e);
+}
+
+float display(float l) {
+  float v = l * exposure_scale(u_exposure);
+  return srgb8_code(u_tone == 0 ? tone_clamp(v) : tone_filmic(v)) / 255.0;
+}
+
+void main() {
+  // Pixel (x, y) counted from the top-left, as the renderer's image; spp_side^2 stratified sub-pixels.
+  float x = floor(gl_FragCoord.x), y = u_size.y - 1.0 - floor(gl_FragCoord.y);
+  vec3 sum = vec3(0.0);
+  for (int j = 0; j < u_spp_side; ++j) {
+    for (int i = 0; i < u_spp_side; ++i) {
+      float px = x + (float(i) + 0.5) / float(u_spp_side);
+      float py = y + (float(j) + 0.5) / float(u_spp_side);
+      float sx = (2.0 * px / u_size.x - 1.0) * u_tan_half * (u_size.x / u_size.y);
+      float sy = (1.0 - 2.0 * py / u_size.y) * u_tan_half;
+      sum += radiance(normalize(u_forward + u_right * sx + u_up * sy));
+    }
+  }
+  vec3 l = sum / float(u_spp_side * u_spp_side);
+  o_colour = vec4(display(l.x), display(l.y), display(l.z), 1.0);
+}
+`;
+  }
+
+  function compile(type, source) {
+    const sh = gl.createShader(type);
+    gl.shaderSource(sh, source);
+    gl.compileShader(sh);
+    if (!gl.getShaderParameter(sh, gl.COMPILE_STATUS)) throw new Error('WebGL 2 shader: ' + gl.getShaderInfoLog(sh));
+    return sh;
+  }
+
+  function sub(a, b) { return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]; }
+  function cross3(a, b) { return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]; }
+  function unit(a) { const l = Math.hypot(...a); return a.map((x) => x / l); }
+
+  function drawSphere() {
+    const canvas = $('shadelab-sphere');
+    if (!gl) {
+      gl = canvas.getContext('webgl2', { preserveDrawingBuffer: true, antialias: false });
+      if (!gl) { sphereError = 'WebGL 2 is not available'; return; }
+      const buf = gl.createBuffer();
+      gl.bindBuffer(gl.ARRAY_BUFFER, buf);
+      gl.bufferData(gl.ARRAY_BUFFER, new Float32Array([-1, -1, 3, -1, -1, 3]), gl.STATIC_DRAW);
+      displayKernels = call({ op: 'kernels', names: ['srgb8_code', 'tone_filmic', 'tone_clamp', 'exposure_scale'], lang: 'essl' }).text;
+    }
+    const ex = call({ op: 'shader', model: state.model, params: state.params, lang: 'essl' });
+    if (ex.error) { sphereError = ex.error; return; }
+    const source = fragmentSource(ex.text, ex.entry);
+    if (source !== programSource) {
+      const p = gl.createProgram();
+      gl.attachShader(p, compile(gl.VERTEX_SHADER, VERTEX));
+      gl.attachShader(p, compile(gl.FRAGMENT_SHADER, source));
+      gl.bindAttribLocation(p, 0, 'p');
+      gl.linkProgram(p);
+      if (!gl.getProgramParameter(p, gl.LINK_STATUS)) throw new Error('WebGL 2 link: ' + gl.getProgramInfoLog(p));
+      if (program) gl.deleteProgram(program);
+      program = p;
+      programSource = source;
+    }
+    gl.useProgram(program);
+    gl.viewport(0, 0, canvas.width, canvas.height);
+    gl.enableVertexAttribArray(0);
+    gl.vertexAttribPointer(0, 2, gl.FLOAT, false, 0, 0);
+    const cam = SPHERE.camera;
+    const forward = unit(sub(cam.look_at, cam.position));
+    const right = unit(cross3(forward, cam.up));
+    const up = cross3(right, forward);
+    const u = (name) => gl.getUniformLocation(program, name);
+    gl.uniform2f(u('u_size'), canvas.width, canvas.height);
+    gl.uniform3fv(u('u_eye'), cam.position);
+    gl.uniform3fv(u('u_forward'), forward);
+    gl.uniform3fv(u('u_right'), right);
+    gl.uniform3fv(u('u_up'), up);
+    gl.uniform1f(u('u_tan_half'), Math.tan(0.5 * cam.fov * Math.PI / 180));
+    gl.uniform1i(u('u_spp_side'), Math.round(Math.sqrt(SPHERE.spp)));
+    gl.uniform3fv(u('u_light_pos'), numbers(state.view.light_pos, 3, 'light_pos'));
+    const lv = numbers(state.view.light, 0, 'light');
+    gl.uniform3fv(u('u_light'), lv.length === 1 ? [lv[0], lv[0], lv[0]] : lv);
+    gl.uniform1i(u('u_units'), state.view.units === 'game' ? 0 : 1);
+    gl.uniform1f(u('u_exposure'), Number(state.view.exposure));
+    gl.uniform1i(u('u_tone'), state.view.tone === 'clamp' ? 0 : 1);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    sphereError = '';
+  }
+
+  // The sphere's pixels, top row first, RGBA 0..255 (for tests and scripts).
+  window.shadelabSpherePixels = function () {
+    const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+    const raw = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, raw);
+    const out = new Array(w * h * 4);
+    for (let y = 0; y < h; ++y) for (let x = 0; x < w * 4; ++x) out[y * w * 4 + x] = raw[(h - 1 - y) * w * 4 + x];
+    return { width: w, height: h, rgba: out };
+  };
+
+  // ---- update ---------------------------------------------------------------------------------------------
+  let pending = false;
+  function changed() {
+    if (pending) return;
+    pending = true;
+    requestAnimationFrame(() => { pending = false; update(); });
+  }
+
+  function update() {
+    const t0 = performance.now();
+    const v = state.view;
+    const theta = numbers(v.theta, 0, 'theta');
+    const wi = numbers(v.wi, 3, 'wi'), wo = numbers(v.wo, 3, 'wo');
+    const base = { model: state.model, params: state.params };
+    const probe = call(Object.assign({ op: 'eval', wi, wo }, base));
+    const albedo = call(Object.assign({ op: 'albedo', theta }, base));
+    const curve = call(Object.assign({ op: 'albedo', theta: ALBEDO_CURVE }, base));
+    const thetaIn = Number(v.theta_in);
+    const lobe = call(Object.assign({ op: 'lobe', theta_in: thetaIn, times_cos: v.cos === '1', fixed: v.fixed, samples: 361 }, base));
+    const a = -thetaIn * Math.PI / 180;
+    const lobe3d = call(Object.assign({ op: 'lobe3d', wi: [Math.sin(a), 0, Math.cos(a)], n_theta: 19, n_phi: 36 }, base));
+    const info = modelInfo(state.model);
+    const nParam = info.params.find((p) => p.name === 'n' && p.kind === 'scalar');
+    const zooN = nParam ? Number(effective('n')) : 100;
+    const zoo = call({ op: 'zoo', n: zooN });
+    const failed = [probe, albedo, curve, lobe, lobe3d, zoo].find((r) => r.error);
+    if (failed) {
+      // Still a state (with the error) and the ready mark: a script waiting on the page is told.
+      errors = [failed.error];
+      showErrors();
+      $('shadelab-state').textContent = JSON.stringify({ model: state.model, params: Object.assign({}, state.params), errors });
+      document.body.dataset.ready = String(Number(document.body.dataset.ready || 0) + 1);
+      return;
+    }
+    drawLobe(lobe);
+    drawLobe3d(lobe3d);
+    drawAlbedo(curve);
+    const probeState = { wi, wo, f: probe.f };
+    fillTables(albedo, probeState, { n: zooN, rows: zoo.rows });
+    try { drawSphere(); } catch (e) { sphereError = e.message; }
+    if (sphereError) { errors = [sphereError]; showErrors(); }
+    const query = queryFromState(state);
+    history.replaceState(null, '', query);
+    $('shadelab-link').href = query;
+    const cam = SPHERE.camera;
+    const sphereState = { width: $('shadelab-sphere').width, height: $('shadelab-sphere').height, center: SPHERE.center,
+                          radius: SPHERE.radius, camera: cam, spp: SPHERE.spp, units: v.units,
+                          light_position: numbers(v.light_pos, 3, 'light_pos'), light: numbers(v.light, 0, 'light'),
+                          exposure: Number(v.exposure), tone: v.tone, error: sphereError || null };
+    const figures = {
+      model: state.model, params: Object.assign({}, state.params),
+      all_params: Object.fromEntries(info.params.map((p) => [p.name, effective(p.name)])), theta: albedo.theta, albedo: albedo.albedo,
+      probe: probeState, query, view: Object.assign({}, v),
+      albedo_curve: { theta: curve.theta, albedo: curve.albedo },
+      lobe: { theta_in: thetaIn, fixed: v.fixed, times_cos: v.cos === '1', angle: lobe.angle, luminance: lobe.luminance },
+      zoo: { n: zooN, rows: zoo.rows.map((r) => ({ model: r.model, closed_form_value: r.closed_form_value, numeric: r.numeric,
+                                                   relative_error: r.relative_error, lower: r.lower, upper: r.upper })) },
+      sphere: sphereState, errors: errors.slice(), update_ms: 0,
+    };
+    figures.update_ms = Math.round(performance.now() - t0);
+    $('shadelab-state').textContent = JSON.stringify(figures);
+    $('shadelab-status').textContent = `ready (${figures.update_ms} ms)`;
+    document.body.dataset.ready = String(Number(document.body.dataset.ready || 0) + 1);
+  }
+
+  async function start() {
+    try {
+      lib = await createShadelab();
+      models = call({ op: 'models' }).models;
+      const parsed = stateFromQuery(location.search);
+      state = parsed.state;
+      errors = parsed.problems;
+      showErrors();
+      buildViewControls();
+      buildParamControls();
+      syncViewControls();
+      update();
+    } catch (e) {
+      errors = ['explorer: ' + e.message];
+      showErrors();
+      $('shadelab-status').textContent = 'failed';
+    }
+  }
+
+  start();
+})();

@@ -1,0 +1,109 @@
+// `shadelab explore`: the site it writes (the page, its script and the WebAssembly module, byte for byte
+// the embedded files), its flag errors, and --serve answering HTTP on 127.0.0.1 with the same files. The
+// page itself is tested in a browser by tools/explore/test/explorer.test.mjs.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+
+#include <chrono>
+#include <thread>
+
+#include "cli_run.h"
+
+namespace shadelab::testing {
+namespace {
+
+std::string read_all(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(CliExplore, WritesTheSite) {
+  const auto dir = process_temp_dir("explore_site") / "nested" / "site";
+  const CliRun r = run("explore --out " + dir.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("file://"), std::string::npos) << r.out;
+  for (const char* name : {"index.html", "explorer.js", "explorer.css", "shadelab_wasm.js"}) {
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / name)) << name;
+  }
+  const std::string html = read_all(dir / "index.html");
+  EXPECT_NE(html.find("id=\"shadelab-state\""), std::string::npos);
+  EXPECT_NE(html.find("src=\"shadelab_wasm.js\""), std::string::npos);
+  // The module is single-file (the wasm inlined), so it loads from file:// with no fetch.
+  const std::string wasm = read_all(dir / "shadelab_wasm.js");
+  EXPECT_GT(wasm.size(), 100000u);
+  EXPECT_NE(wasm.find("createShadelab"), std::string::npos);
+  EXPECT_NE(wasm.find("data:application/octet-stream;base64,"), std::string::npos);
+}
+
+TEST(CliExplore, FlagErrors) {
+  const CliRun r = run("explore --out " + (process_temp_dir("explore_flags") / "s").string() + " --port 9000");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--port"), std::string::npos) << r.err;
+  const CliRun bad = run("explore --serve --port 70000 --out " + (process_temp_dir("explore_flags2") / "s").string());
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--port"), std::string::npos) << bad.err;
+  // A file where the folder should be: one line naming it, exit 2.
+  const auto file = process_temp_dir("explore_flags3") / "f";
+  std::ofstream(file) << "x";
+  const CliRun blocked = run("explore --out " + file.string());
+  EXPECT_EQ(blocked.code, 2);
+  EXPECT_NE(blocked.err.find(file.string()), std::string::npos) << blocked.err;
+}
+
+std::string http_get(int port, const std::string& target) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+    ::close(fd);
+    return {};
+  }
+  const std::string req = "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
+  ::send(fd, req.data(), req.size(), 0);
+  std::string out;
+  char buf[65536];
+  for (ssize_t n; (n = ::recv(fd, buf, sizeof buf, 0)) > 0;) out.append(buf, static_cast<std::size_t>(n));
+  ::close(fd);
+  return out;
+}
+
+TEST(CliExplore, ServesTheSiteOnLoopback) {
+  const auto dir = process_temp_dir("explore_serve") / "site";
+  const std::string out_file = (dir.parent_path() / "out.txt").string();
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string out = "--out=" + dir.string();
+    ::freopen(out_file.c_str(), "w", stdout);
+    ::execl(SHADELAB_EXE, SHADELAB_EXE, "explore", "--serve", "--port", "0", out.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  int port = 0;
+  for (int i = 0; i < 200 && port == 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const std::string text = read_all(out_file);
+    const auto at = text.find("http://127.0.0.1:");
+    if (at != std::string::npos && text.find('/', at + 17) != std::string::npos) port = std::stoi(text.substr(at + 17));
+  }
+  ASSERT_GT(port, 0) << read_all(out_file);
+  const std::string index = http_get(port, "/");
+  EXPECT_EQ(index.rfind("HTTP/1.1 200 OK\r\n", 0), 0u) << index.substr(0, 200);
+  EXPECT_NE(index.find("Content-Type: text/html"), std::string::npos);
+  EXPECT_NE(index.find(read_all(dir / "index.html")), std::string::npos);
+  const std::string js = http_get(port, "/explorer.js?x=1");
+  EXPECT_NE(js.find("Content-Type: text/javascript"), std::string::npos);
+  EXPECT_EQ(http_get(port, "/../etc/passwd").rfind("HTTP/1.1 404", 0), 0u);
+  EXPECT_EQ(http_get(port, "/missing.html").rfind("HTTP/1.1 404", 0), 0u);
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+}
+
+}  // namespace
+}  // namespace shadelab::testing
