@@ -4,6 +4,8 @@
 // Variants beside the defaults (issue 10, section 4): ggx with each sampler (ndf, vndf, vndf-caps, vndf-bounded)
 // and with Kulla-Conty, cook-torrance with d = ggx, filament with Burley diffuse and without compensation; they
 // are named model/param=value (docs/performance.md has a table).
+// eval_batch/MODEL: Brdf::eval_batch over all the pairs per iteration, reported per pair (items_per_second),
+// against eval/MODEL, one virtual call per pair.
 //
 //   ./build/release/bench/brdf_bench --benchmark_filter=eval
 #include <benchmark/benchmark.h>
@@ -53,6 +55,18 @@ void bench_eval(benchmark::State& state, const std::string& model, const ParamAs
   state.SetItemsProcessed(state.iterations());
 }
 
+void bench_eval_batch(benchmark::State& state, const std::string& model, const ParamAssignments& params) {
+  const auto f = make_brdf(model, params).value();
+  const auto& in = inputs();
+  std::vector<Rgb> out(kPairs);
+  for (auto _ : state) {
+    f->eval_batch(in.wi.data(), in.wo.data(), out.data(), kPairs);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(kPairs));
+}
+
 void bench_pdf(benchmark::State& state, const std::string& model, const ParamAssignments& params) {
   const auto f = make_brdf(model, params).value();
   const auto& in = inputs();
@@ -91,6 +105,7 @@ const bool registered = [] {
     std::string name = v.model;
     for (const auto& [key, value] : v.params) name += "/" + key + "=" + value;
     benchmark::RegisterBenchmark(("eval/" + name).c_str(), bench_eval, v.model, v.params);
+    benchmark::RegisterBenchmark(("eval_batch/" + name).c_str(), bench_eval_batch, v.model, v.params);
     benchmark::RegisterBenchmark(("pdf/" + name).c_str(), bench_pdf, v.model, v.params);
     benchmark::RegisterBenchmark(("sample/" + name).c_str(), bench_sample, v.model, v.params);
   }

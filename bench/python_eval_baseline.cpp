@@ -1,6 +1,12 @@
-// The C++ baseline of bench/python_eval_overhead.py: the plain loop a C++ user writes over N direction pairs,
-// out[i] = f->eval(wi[i], wo[i]), with the output allocated once. The script writes the pairs it gives to
-// Python's Brdf.eval into a file and runs this program on the same file, alternating the two in one run.
+// The C++ baselines of bench/python_eval_overhead.py: the two plain ways a C++ user evaluates N direction
+// pairs with the library, the output allocated once:
+//   eval_batch/MODEL: f->eval_batch(wi, wo, out, n), the library's batch entry (one virtual call, the
+//                     model's kernel inlined into the loop, no check): the fastest;
+//   eval_loop/MODEL:  for each i, out[i] = f->eval(wi[i], wo[i]) (one virtual call per pair).
+// and, for the record, eval_batch_checked/MODEL: the same batch with its unit-length check of every
+// direction, the entry Python's Brdf.eval calls on the arrays in place.
+// The script writes the pairs it gives to Python's Brdf.eval into a file and runs this program on the same
+// file, alternating the two in one run.
 //
 //   SHADELAB_BENCH_PAIRS=pairs.bin SHADELAB_BENCH_MODEL=cook-torrance ./build/release/bench/python_eval_baseline
 // The file holds N wi then N wo, each as 3 float64 (x, y, z), unit length. Without it: 1e6 cosine-weighted
@@ -35,6 +41,33 @@ void eval_loop(benchmark::State& state) {
   std::vector<Rgb> out(n);
   for (auto _ : state) {
     for (std::size_t i = 0; i < n; ++i) out[i] = f.eval(g_wi[i], g_wo[i]);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
+}
+
+void eval_batch(benchmark::State& state) {
+  const Brdf& f = *g_brdf;
+  const std::size_t n = g_wi.size();
+  std::vector<Rgb> out(n);
+  for (auto _ : state) {
+    f.eval_batch(g_wi.data(), g_wo.data(), out.data(), n);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
+}
+
+void eval_batch_checked(benchmark::State& state) {
+  const Brdf& f = *g_brdf;
+  const std::size_t n = g_wi.size();
+  std::vector<Rgb> out(n);
+  for (auto _ : state) {
+    if (f.eval_batch_checked(g_wi.data(), g_wo.data(), out.data(), n) != n) {
+      state.SkipWithError("a direction of the pairs is not unit length");
+      break;
+    }
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
@@ -96,7 +129,10 @@ int main(int argc, char** argv) {
       g_wo.push_back(sample_cosine_hemisphere({rng.next_double(), rng.next_double()}));
     }
   }
+  benchmark::RegisterBenchmark(("eval_batch/" + model).c_str(), eval_batch)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark(("eval_loop/" + model).c_str(), eval_loop)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark(("eval_batch_checked/" + model).c_str(), eval_batch_checked)
+      ->Unit(benchmark::kMillisecond);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

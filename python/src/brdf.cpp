@@ -143,7 +143,7 @@ py::dict params_dict(const PyBrdf& b) {
 }
 
 py::object eval(const PyBrdf& b, py::handle wi, py::handle wo, py::handle out) {
-  const Pairs p = to_pairs(wi, "wi", wo, "wo");
+  Pairs p = to_pairs(wi, "wi", wo, "wo");
   const std::vector<py::ssize_t> shape = p.single ? std::vector<py::ssize_t>{3} : std::vector<py::ssize_t>{p.count, 3};
   py::array_t<double> result;
   double* o = nullptr;
@@ -152,19 +152,26 @@ py::object eval(const PyBrdf& b, py::handle wi, py::handle wo, py::handle out) {
     o = result.mutable_data();
   } else {
     o = output_buffer(out, shape, "out");
+    detach_from_output(p, o, 3 * p.count);
   }
+  // The loop and the kernel are the library's (Brdf::eval_batch_checked, as bench/python_eval_baseline.cpp
+  // calls it): unit directions are read from NumPy's arrays in place, checked in the library's own loop;
+  // from the first pair that is not, a chunk is copied, normalized and given to eval_batch, and the walk
+  // goes back to the arrays. Broadcast rows always take the copy.
   const Brdf& f = *b.f;
+  Rgb* rows = rgb_rows(o);
   int which = 0;
   py::ssize_t bad = -1;
   {
     py::gil_scoped_release release;
-    bad = for_each_pair(p, normalize_direction, normalize_direction,
-                        [&](const Vec3& a, const Vec3& c, py::ssize_t i) {
-                          const Rgb v = f.eval(a, c);
-                          o[3 * i] = v.r;
-                          o[3 * i + 1] = v.g;
-                          o[3 * i + 2] = v.b;
-                        }, &which);
+    bad = for_each_chunk(
+        p, normalize_direction, normalize_direction,
+        [&](const Vec3* a, const Vec3* c, py::ssize_t start, py::ssize_t rest) {
+          return static_cast<py::ssize_t>(f.eval_batch_checked(a, c, rows + start, static_cast<std::size_t>(rest)));
+        },
+        [&](const Vec3* a, const Vec3* c, py::ssize_t start, py::ssize_t m) {
+          f.eval_batch(a, c, rows + start, static_cast<std::size_t>(m));
+        }, &which);
   }
   if (bad >= 0) fail_direction(which == 0 ? "wi" : "wo", which == 0 ? p.a : p.b, bad);
   if (!out.is_none()) return py::reinterpret_borrow<py::object>(out);
@@ -186,8 +193,10 @@ py::object pdf(const PyBrdf& b, py::handle wi, py::handle wo, py::handle out) {
   py::ssize_t bad = -1;
   {
     py::gil_scoped_release release;
-    bad = for_each_pair(p, normalize_direction, normalize_direction,
-                        [&](const Vec3& a, const Vec3& c, py::ssize_t i) { o[i] = f.pdf(a, c); }, &which);
+    bad = for_each_direction_chunk(
+        p, [&](const Vec3* a, const Vec3* c, py::ssize_t start, py::ssize_t m) {
+          for (py::ssize_t j = 0; j < m; ++j) o[start + j] = f.pdf(a[j], c[j]);
+        }, &which);
   }
   if (bad >= 0) fail_direction(which == 0 ? "wi" : "wo", which == 0 ? p.a : p.b, bad);
   if (p.single) return py::float_(o[0]);
@@ -213,17 +222,22 @@ py::tuple sample(const PyBrdf& b, py::handle wo, py::handle u) {
   py::ssize_t bad = -1;
   {
     py::gil_scoped_release release;
-    bad = for_each_pair(p, normalize_direction, in_unit_cube,
-                        [&](const Vec3& o, const Vec3& r, py::ssize_t i) {
-                          const BrdfSample s = f.sample(o, {r.x, r.y}, r.z);
-                          wi_d[3 * i] = s.wi.x;
-                          wi_d[3 * i + 1] = s.wi.y;
-                          wi_d[3 * i + 2] = s.wi.z;
-                          pdf_d[i] = s.pdf;
-                          w_d[3 * i] = s.weight.r;
-                          w_d[3 * i + 1] = s.weight.g;
-                          w_d[3 * i + 2] = s.weight.b;
-                        }, &which);
+    bad = for_each_chunk(
+        p, normalize_direction, in_unit_cube, [](const Vec3*, const Vec3*, py::ssize_t, py::ssize_t) { return py::ssize_t{0}; },
+        [&](const Vec3* wo_rows, const Vec3* u_rows, py::ssize_t start, py::ssize_t m) {
+          for (py::ssize_t j = 0; j < m; ++j) {
+            const py::ssize_t i = start + j;
+            const Vec3& r = u_rows[j];
+            const BrdfSample s = f.sample(wo_rows[j], {r.x, r.y}, r.z);
+            wi_d[3 * i] = s.wi.x;
+            wi_d[3 * i + 1] = s.wi.y;
+            wi_d[3 * i + 2] = s.wi.z;
+            pdf_d[i] = s.pdf;
+            w_d[3 * i] = s.weight.r;
+            w_d[3 * i + 1] = s.weight.g;
+            w_d[3 * i + 2] = s.weight.b;
+          }
+        }, &which);
   }
   if (bad >= 0 && which == 0) fail_direction("wo", p.a, bad);
   if (bad >= 0) {
@@ -236,22 +250,13 @@ py::tuple sample(const PyBrdf& b, py::handle wo, py::handle u) {
 
 py::array_t<double> albedo(const PyBrdf& b, py::handle theta_deg) {
   bool scalar = false;
-  const std::vector<double> thetas = to_numbers(theta_deg, "theta_deg", &scalar);
-  for (double t : thetas) {
-    // The CLI's rule and message (brdf albedo --theta).
-    if (!std::isfinite(t) || t < 0.0 || t >= 90.0) fail(fmt::format("theta_deg: {} is out of range [0, 90) degrees", t));
-  }
+  const std::vector<double> thetas = to_angles_deg(theta_deg, "theta_deg", false, &scalar);  // brdf albedo --theta
   const py::ssize_t m = static_cast<py::ssize_t>(thetas.size());
   py::array_t<double> out(scalar ? std::vector<py::ssize_t>{3} : std::vector<py::ssize_t>{m, 3});
-  double* o = out.mutable_data();
+  Rgb* o = rgb_rows(out.mutable_data());
   {
     py::gil_scoped_release release;
-    for (std::size_t i = 0; i < thetas.size(); ++i) {
-      const Rgb a = directional_albedo(*b.f, deg_to_rad(thetas[i])).albedo;
-      o[3 * i] = a.r;
-      o[3 * i + 1] = a.g;
-      o[3 * i + 2] = a.b;
-    }
+    for (std::size_t i = 0; i < thetas.size(); ++i) o[i] = directional_albedo(*b.f, deg_to_rad(thetas[i])).albedo;
   }
   return out;
 }
@@ -259,11 +264,8 @@ py::array_t<double> albedo(const PyBrdf& b, py::handle theta_deg) {
 py::dict check(const PyBrdf& b, py::handle angles_deg, py::handle samples) {
   CheckOptions options;
   if (!angles_deg.is_none()) {
-    options.angles_deg = to_numbers(angles_deg, "angles_deg");
+    options.angles_deg = to_angles_deg(angles_deg, "angles_deg", false);
     if (options.angles_deg.empty()) fail("angles_deg: give at least one angle");
-    for (double t : options.angles_deg) {
-      if (!std::isfinite(t) || t < 0.0 || t >= 90.0) fail(fmt::format("angles_deg: {} is out of range [0, 90) degrees", t));
-    }
   }
   if (!samples.is_none()) {
     const long long s = to_integer(samples, "samples");

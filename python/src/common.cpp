@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <memory>
 
 #include "shadelab/image/image_io.h"
@@ -64,6 +65,21 @@ Pairs to_pairs(py::handle a, const std::string& name_a, py::handle b, const std:
   return p;
 }
 
+void detach_from_output(Pairs& p, const double* out, py::ssize_t out_doubles) {
+  const auto overlaps = [&](const Vectors& v) {
+    const auto* lo = reinterpret_cast<const char*>(v.data);
+    const auto* hi = lo + 3 * v.count * static_cast<py::ssize_t>(sizeof(double));
+    const auto* o_lo = reinterpret_cast<const char*>(out);
+    const auto* o_hi = o_lo + out_doubles * static_cast<py::ssize_t>(sizeof(double));
+    return std::less<>()(lo, o_hi) && std::less<>()(o_lo, hi);
+  };
+  for (Vectors* v : {&p.a, &p.b}) {
+    if (v->count == 0 || !overlaps(*v)) continue;
+    v->array = DoubleArray::ensure(v->array.attr("copy")());
+    v->data = v->array.data();
+  }
+}
+
 void fail_direction(const std::string& name, const Vectors& v, py::ssize_t row) {
   const Vec3 d = v.at(row);
   fail(fmt::format("{}: row {} ({}, {}, {}) is not a direction (zero length or not finite)", name, row, d.x, d.y,
@@ -84,6 +100,23 @@ std::vector<double> to_numbers(py::handle obj, const std::string& name, bool* sc
   if (arr.ndim() > 1) fail(name + ": expected a number or a 1-D sequence of numbers, got shape " + shape_text(arr));
   if (scalar != nullptr) *scalar = arr.ndim() == 0;
   return std::vector<double>(arr.data(), arr.data() + arr.size());
+}
+
+double to_number(py::handle obj, const std::string& name) {
+  bool scalar = false;
+  const std::vector<double> v = to_numbers(obj, name, &scalar);
+  if (!scalar) fail(name + ": expected one number");
+  return v[0];
+}
+
+std::vector<double> to_angles_deg(py::handle obj, const std::string& name, bool up_to_90, bool* scalar) {
+  std::vector<double> angles = to_numbers(obj, name, scalar);
+  for (double t : angles) {
+    if (!std::isfinite(t) || t < 0.0 || (up_to_90 ? t > 90.0 : t >= 90.0)) {
+      fail(fmt::format("{}: {} is out of range [0, 90{} degrees", name, t, up_to_90 ? "]" : ")"));
+    }
+  }
+  return angles;
 }
 
 double* output_buffer(py::handle out, const std::vector<py::ssize_t>& shape, const std::string& name) {

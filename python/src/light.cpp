@@ -18,10 +18,7 @@ namespace {
 
 py::object fresnel(py::handle ior, py::handle k, py::handle theta_deg, py::handle material) {
   bool scalar = false;
-  const std::vector<double> thetas = to_numbers(theta_deg, "theta_deg", &scalar);
-  for (double t : thetas) {
-    if (!std::isfinite(t) || t < 0.0 || t > 90.0) fail(fmt::format("theta_deg: {} is out of range [0, 90] degrees", t));
-  }
+  const std::vector<double> thetas = to_angles_deg(theta_deg, "theta_deg", true, &scalar);
   const py::ssize_t count = static_cast<py::ssize_t>(thetas.size());
   if (!material.is_none()) {
     if (!ior.is_none() || !k.is_none()) fail("fresnel: give ior=N (and k=K) or material=NAME, not both");
@@ -29,27 +26,16 @@ py::object fresnel(py::handle ior, py::handle k, py::handle theta_deg, py::handl
     const FresnelMaterial* mat = find_fresnel_material(name);
     if (mat == nullptr) fail("material: unknown material '" + name + "' (see fresnel_materials())");
     py::array_t<double> out(scalar ? std::vector<py::ssize_t>{3} : std::vector<py::ssize_t>{count, 3});
-    double* o = out.mutable_data();
-    for (std::size_t i = 0; i < thetas.size(); ++i) {
-      const Rgb f = fresnel_reflectance(*mat, std::cos(deg_to_rad(thetas[i])));
-      o[3 * i] = f.r;
-      o[3 * i + 1] = f.g;
-      o[3 * i + 2] = f.b;
-    }
+    Rgb* o = rgb_rows(out.mutable_data());
+    for (std::size_t i = 0; i < thetas.size(); ++i) o[i] = fresnel_reflectance(*mat, std::cos(deg_to_rad(thetas[i])));
     return out;
   }
   if (ior.is_none()) fail("fresnel: give ior=N (and k=K) or material=NAME");
-  bool ior_scalar = false;
-  const std::vector<double> n_values = to_numbers(ior, "ior", &ior_scalar);
-  if (!ior_scalar) fail("ior: expected one number");
-  const double n = n_values[0];
+  const double n = to_number(ior, "ior");
   if (!(n > 0.0) || !std::isfinite(n)) fail(fmt::format("ior: N = {} must be positive", n));
   double kk = 0.0;
   if (!k.is_none()) {
-    bool k_scalar = false;
-    const std::vector<double> k_values = to_numbers(k, "k", &k_scalar);
-    if (!k_scalar) fail("k: expected one number");
-    kk = k_values[0];
+    kk = to_number(k, "k");
     if (!(kk >= 0.0) || !std::isfinite(kk)) fail(fmt::format("k: K = {} must not be negative", kk));
   }
   py::array_t<double> out(count);

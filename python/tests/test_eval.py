@@ -194,3 +194,66 @@ def test_eval_releases_the_gil():
         last = now
     t.join()
     assert longest < 0.5 * duration, (longest, duration)
+
+
+def unit_rows(rng, n):
+    v = rng.normal(size=(n, 3))
+    v[:, 2] = np.abs(v[:, 2])
+    return v / np.linalg.norm(v, axis=1, keepdims=True)
+
+
+@pytest.mark.parametrize("model", [m["name"] for m in shadelab.models()])
+def test_vectorized_eval_equals_per_pair_calls_across_chunks(model):
+    # 700 pairs are three chunks of the binding's walk (256 each): the first and last are unit directions,
+    # used in place by the library's eval_batch; the middle one holds a row to normalize, so the whole
+    # chunk is copied and normalized first. Each row must equal eval of that pair alone.
+    f = shadelab.Brdf(model, **PARAMS.get(model, {}))
+    rng = np.random.default_rng(11)
+    wi = unit_rows(rng, 700)
+    wo = unit_rows(rng, 700)
+    wi[300] *= 3.0
+    wo[[5, 650]] = [[0.3, 0.1, -0.9], [0.2, 0.0, 0.0]]  # below and on the horizon
+    values = f.eval(wi, wo)
+    for i in range(700):
+        assert values[i].tobytes() == f.eval(wi[i], wo[i]).tobytes(), (model, i)
+    assert np.all(values[[5, 650]] == 0.0)
+    # One wo for every wi (broadcast: copied chunks) equals the tiled rows (in place).
+    assert np.array_equal(f.eval(wi, wo[7]), f.eval(wi, np.tile(wo[7], (700, 1))))
+
+
+def test_eval_into_an_input_or_an_overlapping_view():
+    f = shadelab.Brdf("cook-torrance")
+    rng = np.random.default_rng(12)
+    wi = unit_rows(rng, 600)
+    wo = unit_rows(rng, 600)
+    expected = f.eval(wi, wo)
+    same = wi.copy()
+    assert f.eval(same, wo, out=same) is same and np.array_equal(same, expected)
+    buf = np.empty((601, 3))
+    buf[:-1] = wi
+    shifted = buf[1:]  # out one row after wi in the same memory
+    f.eval(buf[:-1], wo, out=shifted)
+    assert np.array_equal(shifted, expected)
+
+
+def test_bad_rows_inside_unit_chunks_name_their_row():
+    f = shadelab.Brdf("lambert")
+    rng = np.random.default_rng(13)
+    wi = unit_rows(rng, 600)
+    wo = unit_rows(rng, 600)
+    for name, arr, row, value in [("wi", wi, 300, math.nan), ("wo", wo, 599, math.inf), ("wo", wo, 0, 0.0)]:
+        bad = arr.copy()
+        bad[row] = [value, 0.0, 0.0] if value != 0.0 else [0.0, 0.0, 0.0]
+        args = (bad, wo) if name == "wi" else (wi, bad)
+        with pytest.raises(ValueError) as e:
+            f.eval(*args)
+        v = "nan" if math.isnan(value) else ("inf" if math.isinf(value) else "0")
+        assert str(e.value) == f"{name}: row {row} ({v}, 0, 0) is not a direction (zero length or not finite)"
+        with pytest.raises(ValueError, match=f"{name}: row {row} "):
+            f.pdf(*args)
+    with pytest.raises(ValueError) as e:
+        f.eval(wi, wo[:599])
+    assert str(e.value) == "wi and wo: 600 and 599 rows do not pair (give the same number of rows, or one row)"
+    with pytest.raises(ValueError) as e:
+        f.eval(wi[:, :2], wo)
+    assert str(e.value) == "wi: expected shape (N, 3) or (3,), got (600, 2)"

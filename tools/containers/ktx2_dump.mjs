@@ -23,6 +23,8 @@ function ufloat(bits, mbits) {
   return e === 0 ? (m / 2 ** mbits) * 2 ** -14 : (1 + m / 2 ** mbits) * 2 ** (e - 15);
 }
 const formats = {
+  83: { name: 'VK_FORMAT_R16G16_SFLOAT', size: 4, typeSize: 2,
+        decode: (dv, o) => [0, 1].map((c) => half(dv.getUint16(o + 2 * c, true))) },
   97: { name: 'VK_FORMAT_R16G16B16A16_SFLOAT', size: 8, typeSize: 2,
         decode: (dv, o) => [0, 1, 2, 3].map((c) => half(dv.getUint16(o + 2 * c, true))) },
   109: { name: 'VK_FORMAT_R32G32B32A32_SFLOAT', size: 16, typeSize: 4,
@@ -37,7 +39,7 @@ const formats = {
 
 const problems = [];
 const fmt = formats[ktx.vkFormat];
-if (!fmt) problems.push(`vkFormat ${ktx.vkFormat} is not one of the four HDR formats`);
+if (!fmt) problems.push(`vkFormat ${ktx.vkFormat} is not one of the formats this reader decodes`);
 if (fmt && ktx.typeSize !== fmt.typeSize) problems.push(`typeSize ${ktx.typeSize}, expected ${fmt.typeSize}`);
 if (ktx.supercompressionScheme !== 0) problems.push('supercompressed');
 const dfd = ktx.dataFormatDescriptor[0];
@@ -50,13 +52,16 @@ const keys = Object.keys(ktx.keyValue);
 for (let i = 1; i < keys.length; i++) {
   if (Buffer.compare(Buffer.from(keys[i - 1]), Buffer.from(keys[i])) >= 0) problems.push(`key/value data not sorted at '${keys[i]}'`);
 }
-// Levels: level i is max(1, w >> i) square, six faces, smallest level first, each at a multiple of lcm(size, 4).
+// Levels: level i is max(1, w >> i) x max(1, h >> i), faceCount faces (6 for a cube, 1 for a 2D texture),
+// smallest level first, each at a multiple of lcm(size, 4).
+const levelWidth = (i) => Math.max(1, ktx.pixelWidth >> i);
+const levelHeight = (i) => Math.max(1, Math.max(1, ktx.pixelHeight) >> i);
 const levels = ktx.levels.map((l, i) => ({ byteOffset: l.levelData.byteOffset - bytes.byteOffset,
                                           byteLength: l.levelData.byteLength, uncompressed: l.uncompressedByteLength }));
 const align = fmt ? (fmt.size % 4 === 0 ? fmt.size : fmt.size * 4) : 4;
 levels.forEach((l, i) => {
-  const n = Math.max(1, ktx.pixelWidth >> i);
-  if (fmt && l.byteLength !== 6 * n * n * fmt.size) problems.push(`level ${i}: byteLength ${l.byteLength}, expected ${6 * n * n * fmt.size}`);
+  const expected = ktx.faceCount * levelWidth(i) * levelHeight(i) * (fmt ? fmt.size : 0);
+  if (fmt && l.byteLength !== expected) problems.push(`level ${i}: byteLength ${l.byteLength}, expected ${expected}`);
   if (l.byteOffset % align !== 0) problems.push(`level ${i}: byteOffset ${l.byteOffset} not a multiple of ${align}`);
   if (l.byteOffset + l.byteLength > bytes.byteLength) problems.push(`level ${i}: past the end of the file`);
   if (i > 0 && l.byteOffset >= levels[i - 1].byteOffset) problems.push(`level ${i} is stored after level ${i - 1}`);
@@ -64,10 +69,10 @@ levels.forEach((l, i) => {
 
 const texels = queries.map((q) => {
   const [level, face, x, y] = q.split(':').map(Number);
-  const n = Math.max(1, ktx.pixelWidth >> level);
+  const w = levelWidth(level), h = levelHeight(level);
   const l = ktx.levels[level].levelData;
   const dv = new DataView(l.buffer, l.byteOffset, l.byteLength);
-  const rgba = fmt.decode(dv, ((face * n + y) * n + x) * fmt.size);
+  const rgba = fmt.decode(dv, ((face * h + y) * w + x) * fmt.size);
   return { level, face, x, y, value: rgba.map((v) => (Number.isFinite(v) ? v : String(v))) };
 });
 

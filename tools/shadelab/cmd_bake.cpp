@@ -9,6 +9,11 @@
 // header) hold the six faces (and the specular mip chain); .exr, .hdr, .pic, .png hold an image layout
 // (--layout). --format chooses the texel format of the containers: rgba16f (default), rgba32f, rg11b10f,
 // rgb9e5 (texel_format.h; .ktx holds the first two).
+//
+// bake specular --lobe phong (default) prefilters normalized Phong lobes (prefilter.h); --lobe ggx the GGX
+// lobes of the split sum (prefilter_ggx.h), one perceptual roughness per level by --mapping linear|filament,
+// level 0 = the input at --size; the mapping goes into the KTX 2 key/value data (shadelab.mip_mapping) and
+// --json (mip_mapping), the only record for .ktx, .dds and the EXR faces.
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -16,6 +21,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "bake_shared.h"
 #include "cli_common.h"
 #include "progress.h"
 #include "shadelab/envmap/dds.h"
@@ -25,10 +31,21 @@
 #include "shadelab/envmap/texel_format.h"
 #include "shadelab/envmap/latlong.h"
 #include "shadelab/envmap/prefilter.h"
+#include "shadelab/envmap/prefilter_ggx.h"
 #include "shadelab/envmap/sh.h"
 #include "shadelab/image/image_io.h"
 
 namespace shadelab::cli {
+
+const char* const cube_convention_text =
+    "faces +X, -X, +Y, -Y, +Z, -Z with the OpenGL / Vulkan cube map orientation (OpenGL 4.6 table 8.19), row 0 "
+    "is t = 0; world +Y up";
+
+KtxMetadata ktx2_metadata(const std::string& content, const nlohmann::json& mip_mapping) {
+  KtxMetadata kv = {{"shadelab.content", content}, {"shadelab.cube_convention", cube_convention_text}};
+  if (!mip_mapping.is_null()) kv.emplace_back("shadelab.mip_mapping", mip_mapping.dump());
+  return kv;
+}
 
 namespace {
 
@@ -44,6 +61,9 @@ struct BakeOptions {
   std::string window = "none";
   int mips = 0;
   int levels = 0;                 // specular: --levels, the same as --mips
+  std::string lobe = "phong";     // specular: phong | ggx
+  std::string mapping = "linear";  // specular --lobe ggx: roughness-to-mip mapping
+  int samples = 1024;              // specular --lobe ggx: half vectors per texel
   std::string format = "rgba16f";  // texel format of .ktx2 / .ktx / .dds outputs
   double gloss_scale = 10.0;
   double gloss_bias = 1.0;
@@ -165,14 +185,6 @@ void check_layout(const BakeOptions& o, const fs::path& out) {
   check_format(o, out);
 }
 
-// The key/value data of a KTX 2 output (ktx2.h adds KTXorientation and KTXwriter).
-KtxMetadata ktx2_metadata(const std::string& content, const nlohmann::json& mip_mapping = nullptr) {
-  KtxMetadata kv = {{"shadelab.content", content},
-                    {"shadelab.cube_convention", "faces +X, -X, +Y, -Y, +Z, -Z with the OpenGL / Vulkan cube map "
-                                                 "orientation (OpenGL 4.6 table 8.19), row 0 is t = 0; world +Y up"}};
-  if (!mip_mapping.is_null()) kv.emplace_back("shadelab.mip_mapping", mip_mapping.dump());
-  return kv;
-}
 
 // Writes a mip chain to a container chosen by extension (.ktx, .ktx2, .dds); warns about clamped values.
 std::uint64_t write_container(const std::vector<CubeMap>& levels, const fs::path& path, TexelFormat format,
@@ -230,6 +242,89 @@ std::uint64_t write_cube(const CubeMap& cube, const fs::path& path, const std::s
 double elapsed_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+}  // namespace
+
+Image read_environment(const std::string& input) {
+  BakeOptions o;
+  o.input = input;
+  return read_environment_image(o);
+}
+
+bool is_latlong_image(const Image& img) { return is_latlong(img); }
+
+CubeMap environment_cube(const Image& img, const std::string& input) {
+  BakeOptions o;
+  o.input = input;
+  return environment_to_cube(o, img);
+}
+
+CubeMap environment_cube_at(const Image& img, const std::string& input, int size) {
+  if (is_latlong(img)) return latlong_to_cube(img, size);
+  CubeMap env = environment_cube(img, input);
+  // Resampled through the lat-long form with area filtering when the size differs (as bake convert does).
+  if (env.size != size) env = latlong_to_cube(cube_to_latlong(env, 4 * std::max(env.size, size)), size);
+  return env;
+}
+
+GgxPrefilteredCube bake_ggx_chain(const CubeMap& env, int levels, GgxRoughnessMapping mapping, int samples, bool progress) {
+  GgxPrefilterOptions p;
+  p.levels = levels;
+  p.mapping = mapping;
+  p.samples = samples;
+  ProgressBar bar("specular", progress);
+  p.progress = [&](double f) { bar.update(f); };
+  try {
+    GgxPrefilteredCube chain = prefilter_ggx(env, p);
+    bar.finish();
+    return chain;
+  } catch (const std::invalid_argument& e) {  // the CLI checks first; this names the library's option
+    throw UsageError(std::string("--") + e.what());
+  }
+}
+
+nlohmann::json ggx_mip_mapping_json(const GgxPrefilteredCube& chain) {
+  return {{"lobe", "ggx"},
+          {"kernel", "GGX D(h) with alpha = r^2 (r the perceptual roughness), n = v = R (Karis 2013), normalized by "
+                     "the integral of D(h) max(R.l, 0): a constant stays constant"},
+          {"method", "filtered importance sampling (Krivanek & Colbert 2008), Hammersley half vectors"},
+          {"samples", chain.samples},
+          {"mapping", chain.mapping.name()},
+          {"formula", chain.mapping.formula()},
+          {"levels", chain.levels.size()},
+          {"roughness", chain.roughness}};
+}
+
+nlohmann::json sh9_json(const Sh9& sh, RadianceUnits units, ShWindow window, const std::string& window_name,
+                        const nlohmann::json& lights, const std::string& light_normalization) {
+  const BandFactors w = sh_window_factors(window);
+  const BandFactors& base = units == RadianceUnits::game ? cosine_band_factors_over_pi : cosine_band_factors;
+  const BandFactors factors = {w[0] * base[0], w[1] * base[1], w[2] * base[2]};
+  const Sh9 irr = sh9_scale_bands(sh, factors);
+  nlohmann::json radiance = nlohmann::json::array();
+  nlohmann::json irradiance = nlohmann::json::array();
+  for (std::size_t i = 0; i < 9; ++i) {
+    radiance.push_back(to_json(sh.c[i]));
+    irradiance.push_back(to_json(irr.c[i]));
+  }
+  return {
+      {"order", 3},
+      {"basis", "real SH, Condon-Shortley phase, z polar axis, Sloan 2008 order: Y00, Y1-1, Y10, Y11, Y2-2, "
+                "Y2-1, Y20, Y21, Y22; world axes (+Y up)"},
+      {"units", units == RadianceUnits::game ? "game" : "radiometric"},
+      {"convention", units == RadianceUnits::game
+                         ? "irradiance_coefficients give E/pi = sum_i c_i Y_i(n): multiply by kd for the diffuse "
+                           "exit radiance (game units, no pi)"
+                         : "irradiance_coefficients give E = sum_i c_i Y_i(n) in W/m^2 per unit of radiance"},
+      {"band_factors", factors},
+      {"window", window_name},
+      {"lights", lights},
+      {"light_normalization", light_normalization},
+      {"radiance_coefficients", radiance},
+      {"irradiance_coefficients", irradiance}};
+}
+
+namespace {
 
 void run_irradiance(const BakeOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -327,31 +422,7 @@ void run_sh(const BakeOptions& o) {
     sh += sh9_directional_light(l.to_light, l.colour, o.light_normalization == "d3dx");
     lights_json.push_back({{"direction", {l.to_light.x, l.to_light.y, l.to_light.z}}, {"color", to_json(l.colour)}});
   }
-  const BandFactors w = sh_window_factors(window);
-  const BandFactors& base = units == RadianceUnits::game ? cosine_band_factors_over_pi : cosine_band_factors;
-  const BandFactors factors = {w[0] * base[0], w[1] * base[1], w[2] * base[2]};
-  const Sh9 irr = sh9_scale_bands(sh, factors);
-  nlohmann::json radiance = nlohmann::json::array();
-  nlohmann::json irradiance = nlohmann::json::array();
-  for (std::size_t i = 0; i < 9; ++i) {
-    radiance.push_back(to_json(sh.c[i]));
-    irradiance.push_back(to_json(irr.c[i]));
-  }
-  const nlohmann::json j = {
-      {"order", 3},
-      {"basis", "real SH, Condon-Shortley phase, z polar axis, Sloan 2008 order: Y00, Y1-1, Y10, Y11, Y2-2, "
-                "Y2-1, Y20, Y21, Y22; world axes (+Y up)"},
-      {"units", o.units},
-      {"convention", units == RadianceUnits::game
-                         ? "irradiance_coefficients give E/pi = sum_i c_i Y_i(n): multiply by kd for the diffuse "
-                           "exit radiance (game units, no pi)"
-                         : "irradiance_coefficients give E = sum_i c_i Y_i(n) in W/m^2 per unit of radiance"},
-      {"band_factors", factors},
-      {"window", o.window},
-      {"lights", lights_json},
-      {"light_normalization", o.light_normalization},
-      {"radiance_coefficients", radiance},
-      {"irradiance_coefficients", irradiance}};
+  const nlohmann::json j = sh9_json(sh, units, window, o.window, lights_json, o.light_normalization);
   if (!o.out.empty()) {
     const std::string text = j.dump(2) + "\n";
     unwrap(write_file_atomically(o.out, std::vector<char>(text.begin(), text.end())));
@@ -363,7 +434,9 @@ void run_sh(const BakeOptions& o) {
                units == RadianceUnits::game ? "E/pi" : "E, W/m^2");
     const char* names[9] = {"L00", "L1-1", "L10", "L11", "L2-2", "L2-1", "L20", "L21", "L22"};
     for (std::size_t i = 0; i < 9; ++i) {
-      fmt::print("  {:<5} {:>14.8f} {:>14.8f} {:>14.8f}\n", names[i], irr.c[i].r, irr.c[i].g, irr.c[i].b);
+      const auto& c = j["irradiance_coefficients"][i];
+      fmt::print("  {:<5} {:>14.8f} {:>14.8f} {:>14.8f}\n", names[i], c[0].get<double>(), c[1].get<double>(),
+                 c[2].get<double>());
     }
     if (!o.out.empty()) fmt::print("wrote {}\n", o.out);
   }
@@ -373,6 +446,21 @@ void run_specular(const BakeOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   refuse_options(o, "specular", {"--layout"}, "it writes a KTX mip chain and EXR faces");
   refuse_options(o, "specular", {"--units"}, "prefiltered radiance has no game or radiometric convention");
+  if (o.lobe != "phong" && o.lobe != "ggx") throw UsageError("--lobe: '" + o.lobe + "' is not one of phong | ggx");
+  const bool ggx = o.lobe == "ggx";
+  GgxRoughnessMapping mapping = GgxRoughnessMapping::linear;
+  if (ggx) {
+    refuse_options(o, "specular --lobe ggx", {"--gloss-scale", "--gloss-bias"},
+                   "they set Phong exponents; --mapping maps GGX roughness to levels");
+    refuse_options(o, "specular --lobe ggx", {"--input-size"}, "level 0 is the input at --size");
+    if (o.mapping != "linear" && o.mapping != "filament") {
+      throw UsageError("--mapping: '" + o.mapping + "' is not one of linear | filament");
+    }
+    mapping = parse_ggx_roughness_mapping(o.mapping);
+    check_range("--samples", true, o.samples, 1, 1 << 20);
+  } else {
+    refuse_options(o, "specular --lobe phong", {"--mapping", "--samples"}, "they apply to --lobe ggx");
+  }
   const int size = o.has("--size") ? o.size : 128;
   if (!is_power_of_two(size) || size > 2048) throw UsageError(fmt::format("--size: {} is not a power of two in [1, 2048]", size));
   const fs::path out = o.out.empty() ? default_out(o, "_specular.ktx") : fs::path(o.out);
@@ -411,47 +499,75 @@ void run_specular(const BakeOptions& o) {
   }();
   check_bake_outputs(o, planned);
   work_begins();
-  const CubeMap env = load_environment(o);
-  PrefilterOptions p;
-  p.size = size;
-  p.mip_count = mip_count;
-  p.gloss_scale = o.gloss_scale;
-  p.gloss_bias = o.gloss_bias;
-  ProgressBar bar("specular", o.progress);
-  p.progress = [&](double f) { bar.update(f); };
-  auto chain = prefilter_specular(env, p);
-  bar.finish();
-  if (!chain) throw UsageError(chain.error().message);
-  const nlohmann::json mip_mapping = {
-      {"lobe", "phong"},
-      {"kernel", "normalized Phong (n+1)/(2pi) (R.L)^n"},
-      {"mapping", "level i of M holds the Phong exponent n_i = 2^(gloss_scale (1 - i/(M-1)) + gloss_bias); a shader "
-                  "with gloss g in [0, 1] reads level (1 - g)(M - 1)"},
-      {"gloss_scale", o.gloss_scale},
-      {"gloss_bias", o.gloss_bias},
-      {"exponents", chain->exponents}};
-  const std::uint64_t clamped = write_container(chain->levels, out, format, ktx2_metadata("prefiltered specular radiance", mip_mapping));
+  std::vector<CubeMap> levels;
+  nlohmann::json mip_mapping;
+  std::vector<double> exponents;
+  std::vector<double> roughness;
+  if (ggx) {
+    GgxPrefilteredCube chain = bake_ggx_chain(environment_cube_at(read_environment(o.input), o.input, size), mip_count, mapping, o.samples, o.progress);
+    mip_mapping = ggx_mip_mapping_json(chain);
+    roughness = chain.roughness;
+    levels = std::move(chain.levels);
+  } else {
+    const CubeMap env = load_environment(o);
+    PrefilterOptions p;
+    p.size = size;
+    p.mip_count = mip_count;
+    p.gloss_scale = o.gloss_scale;
+    p.gloss_bias = o.gloss_bias;
+    ProgressBar bar("specular", o.progress);
+    p.progress = [&](double f) { bar.update(f); };
+    auto chain = prefilter_specular(env, p);
+    bar.finish();
+    if (!chain) throw UsageError(chain.error().message);
+    mip_mapping = {
+        {"lobe", "phong"},
+        {"kernel", "normalized Phong (n+1)/(2pi) (R.L)^n"},
+        {"mapping", "level i of M holds the Phong exponent n_i = 2^(gloss_scale (1 - i/(M-1)) + gloss_bias); a shader "
+                    "with gloss g in [0, 1] reads level (1 - g)(M - 1)"},
+        {"gloss_scale", o.gloss_scale},
+        {"gloss_bias", o.gloss_bias},
+        {"exponents", chain->exponents}};
+    exponents = chain->exponents;
+    levels = std::move(chain->levels);
+  }
+  const std::uint64_t clamped = write_container(levels, out, format, ktx2_metadata("prefiltered specular radiance", mip_mapping));
   std::vector<std::string> faces;
   if (o.exr_faces) {
     static const char* face_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
-    for (std::size_t m = 0; m < chain->levels.size(); ++m) {
+    for (std::size_t m = 0; m < levels.size(); ++m) {
       for (std::size_t f = 0; f < 6; ++f) {
         const fs::path path = out.parent_path() / fmt::format("{}_m{}_{}.exr", out.stem().string(), m, face_names[f]);
-        unwrap(write_image(chain->levels[m].faces[f], path));
+        unwrap(write_image(levels[m].faces[f], path));
         faces.push_back(path.string());
       }
     }
   }
+  const std::string recorded_in = is_ktx2(out) ? "the KTX 2 key/value data, key shadelab.mip_mapping (JSON)"
+                                               : "only here: .ktx, .dds and the EXR faces hold no shadelab metadata";
   if (o.json) {
-    nlohmann::json j = {{"output", out.string()}, {"exr_faces", faces}, {"size", size},
-                        {"exponents", chain->exponents}, {"gloss_scale", o.gloss_scale}, {"gloss_bias", o.gloss_bias},
-                        {"lobe", "normalized Phong (n+1)/(2pi) (R.L)^n"}, {"clamped_values", clamped},
-                        {"levels", chain->levels.size()}, {"mip_mapping", mip_mapping}, {"seconds", elapsed_since(t0)}};
+    nlohmann::json j = {{"output", out.string()}, {"exr_faces", faces}, {"size", size}, {"clamped_values", clamped},
+                        {"levels", levels.size()}, {"mip_mapping", mip_mapping}, {"mip_mapping_recorded_in", recorded_in},
+                        {"seconds", elapsed_since(t0)}};
+    if (ggx) {
+      j["lobe"] = "GGX D(h), alpha = r^2, n = v = R (Karis 2013 split sum)";
+      j["mapping"] = o.mapping;
+      j["roughness"] = roughness;
+      j["samples"] = o.samples;
+    } else {
+      j["lobe"] = "normalized Phong (n+1)/(2pi) (R.L)^n";
+      j["exponents"] = exponents;
+      j["gloss_scale"] = o.gloss_scale;
+      j["gloss_bias"] = o.gloss_bias;
+    }
     j.update(format_json(out, format));
     print_json(j);
+  } else if (ggx) {
+    fmt::print("wrote {} ({} levels, GGX perceptual roughness {:.4g} .. {:.4g}, {} mapping) and {} EXR faces\n",
+               out.string(), levels.size(), roughness.front(), roughness.back(), o.mapping, faces.size());
   } else {
     fmt::print("wrote {} ({} levels, Phong exponents {:.4g} .. {:.4g}) and {} EXR faces\n", out.string(),
-               chain->levels.size(), chain->exponents.front(), chain->exponents.back(), faces.size());
+               levels.size(), exponents.front(), exponents.back(), faces.size());
   }
 }
 
@@ -518,6 +634,14 @@ void add_bake_command(CLI::App& app, Command& command) {
       sub->add_option("--gloss-scale", o->gloss_scale, "exponent of level i: 2^(scale (1 - i/(M-1)) + bias)")->capture_default_str();
       sub->add_option("--gloss-bias", o->gloss_bias, "see --gloss-scale")->capture_default_str();
       sub->add_flag("!--no-exr-faces", o->exr_faces, "do not write the per-level EXR faces");
+      sub->add_option("--lobe", o->lobe, "phong (normalized Phong lobes, cmft's) or ggx (the split sum's GGX lobes)")
+          ->capture_default_str();
+      sub->add_option("--mapping", o->mapping,
+                      "--lobe ggx: roughness to level, linear (lod = r (L - 1), glTF-Sample-Viewer) or filament "
+                      "(lod = r (2 - r) (L - 1))")
+          ->capture_default_str();
+      sub->add_option("--samples", o->samples, "--lobe ggx: Hammersley half vectors per texel, in [1, 2^20]")
+          ->capture_default_str();
     }
     sub->callback([o, run, sub, &command] {
       o->given.clear();
@@ -529,7 +653,8 @@ void add_bake_command(CLI::App& app, Command& command) {
   };
   add("irradiance", "cosine-convolved irradiance cube map (brute force)", run_irradiance);
   add("sh", "nine RGB spherical-harmonic coefficients and their convention", run_sh);
-  add("specular", "prefiltered specular mip chain (normalized Phong lobes) as KTX 2, KTX or DDS plus EXR faces", run_specular);
+  add("specular", "prefiltered specular mip chain (normalized Phong or GGX lobes) as KTX 2, KTX or DDS plus EXR faces",
+      run_specular);
   add("convert", "lat-long <-> cube cross conversion and format change", run_convert);
 }
 

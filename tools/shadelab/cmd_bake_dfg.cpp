@@ -2,7 +2,7 @@
 // of the height-correlated Smith GGX model (envmap/dfg.h) as engines load it beside a prefiltered cube.
 //
 // Outputs by extension: .exr (float32 R G B: A, B, and A + B with --multiscatter, else 0), .h (a C header
-// of float arrays), .ktx2 (RG16F, or RGBA16F with --multiscatter; where the KTX2 writer is built in).
+// of float arrays), .ktx2 (a 2D texture: RG16F = A, B; with --multiscatter RGBA16F = A, B, A + B, 1).
 // x = N.V at texel centres (i + 0.5)/N left to right; y = perceptual roughness (j + 0.5)/N, row 0 first.
 #include <fmt/core.h>
 
@@ -11,12 +11,44 @@
 #include <string>
 #include <vector>
 
+#include "bake_shared.h"
 #include "cli_common.h"
 #include "shadelab/envmap/dfg.h"
+#include "shadelab/envmap/ktx2.h"
 #include "shadelab/image/image.h"
 #include "shadelab/image/image_io.h"
 
 namespace shadelab::cli {
+
+Image dfg_image(const DfgTable& t) {
+  Image img(t.size, t.size);
+  for (int j = 0; j < t.size; ++j) {
+    for (int i = 0; i < t.size; ++i) img.set(i, j, {t.at(i, j, 0), t.at(i, j, 1), t.at(i, j, 2)});
+  }
+  return img;
+}
+
+nlohmann::json dfg_conventions_json(bool multiscatter) {
+  nlohmann::json channels = nlohmann::json::array({"A: scale of F0", "B: bias"});
+  channels.push_back(multiscatter ? "E_ss = A + B: single-scattering albedo (F = 1)" : "0");
+  return {{"model", "GGX, height-correlated Smith G2, Schlick F (Karis 2013 split sum)"},
+          {"x", "N.V = (i + 0.5) / size, column i, left to right"},
+          {"y", "perceptual roughness r = (j + 0.5) / size, row j; alpha = r^2"},
+          {"orientation", "row 0 (first in memory; the top in an image viewer) is the smallest roughness"},
+          {"channels", channels},
+          {"specular", multiscatter ? "F0 A + B; multiple scattering: times 1 + F0 (1 / E_ss - 1)" : "F0 A + B"}};
+}
+
+KtxMetadata dfg_ktx2_metadata(bool multiscatter) {
+  return {{"shadelab.content", "DFG table: split-sum environment BRDF of GGX with height-correlated Smith G2, "
+                               "Schlick F (Karis 2013)"},
+          {"shadelab.dfg_axes", "x (s, column i) = N.V = (i + 0.5) / width; y (t, row j, row 0 first) = perceptual "
+                                "roughness r = (j + 0.5) / height, alpha = r^2; texel centres"},
+          {"shadelab.dfg_channels", multiscatter ? "R = A (scale of F0), G = B (bias), B = A + B = E_ss "
+                                                   "(single-scattering albedo, F = 1), A = 1"
+                                                 : "R = A (scale of F0), G = B (bias)"}};
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -66,7 +98,7 @@ void run_dfg(const DfgCliOptions& o, const std::vector<std::string>& given) {
   check_range("--samples", true, o.samples, 0, 1 << 24);
   if (o.out.empty()) throw UsageError("--out is required (a .exr, .h or .ktx2 file)");
   const fs::path out(o.out);
-  require_extension("--out", out, {".exr", ".h"}, "the DFG table");
+  require_extension("--out", out, {".exr", ".h", ".ktx2"}, "the DFG table");
   check_outputs({}, {{"--out", out}});
   DfgOptions options;
   options.size = o.size;
@@ -75,12 +107,11 @@ void run_dfg(const DfgCliOptions& o, const std::vector<std::string>& given) {
   work_begins();
   const DfgTable t = bake_dfg(options);
   const std::string ext = lower_ext(out);
+  const Ktx2ImageFormat ktx2_format = o.multiscatter ? Ktx2ImageFormat::rgba16f : Ktx2ImageFormat::rg16f;
   if (ext == ".exr") {
-    Image img(t.size, t.size);
-    for (int j = 0; j < t.size; ++j) {
-      for (int i = 0; i < t.size; ++i) img.set(i, j, {t.at(i, j, 0), t.at(i, j, 1), t.at(i, j, 2)});
-    }
-    unwrap(write_image(img, out));
+    unwrap(write_image(dfg_image(t), out));
+  } else if (ext == ".ktx2") {
+    unwrap(write_ktx2_image(dfg_image(t), out, ktx2_format, dfg_ktx2_metadata(o.multiscatter)));
   } else {
     unwrap(write_file_atomically(out, header_bytes(t, "shadelab_dfg")));
   }
@@ -98,23 +129,22 @@ void run_dfg(const DfgCliOptions& o, const std::vector<std::string>& given) {
     }
   }
   if (o.json) {
-    nlohmann::json channels = nlohmann::json::array({"A: scale of F0", "B: bias"});
-    channels.push_back(o.multiscatter ? "E_ss = A + B: single-scattering albedo (F = 1)" : "0");
-    print_json({{"output", out.string()},
+    nlohmann::json j = {{"output", out.string()},
                 {"size", t.size},
-                {"model", "GGX, height-correlated Smith G2, Schlick F (Karis 2013 split sum)"},
-                {"x", "N.V = (i + 0.5) / size, column i, left to right"},
-                {"y", "perceptual roughness r = (j + 0.5) / size, row j; alpha = r^2"},
-                {"orientation", "row 0 (first in memory; the top in an image viewer) is the smallest roughness"},
-                {"channels", channels},
-                {"specular", o.multiscatter ? "F0 A + B; multiple scattering: times 1 + F0 (1 / E_ss - 1)" : "F0 A + B"},
                 {"method", o.samples > 0 ? "hammersley" : "quadrature"},
                 {"samples", o.samples},
                 {"error", o.samples > 0 ? sampling_error : t.max_error_estimate},
                 {"error_meaning", o.samples > 0 ? "max |difference| to the quadrature over a subset of texels"
                                                 : "largest per-texel absolute error estimate of the quadrature"},
                 {"evaluations", t.evaluations},
-                {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}});
+                {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}};
+    j.update(dfg_conventions_json(o.multiscatter));
+    if (ext == ".ktx2") {
+      j["container"] = "ktx2";
+      j["format"] = o.multiscatter ? "rgba16f" : "rg16f";
+      j["vk_format"] = ktx2_image_vk_format_name(ktx2_format);
+    }
+    print_json(j);
   } else {
     fmt::print("wrote {} ({} x {} DFG table, {})\n", out.string(), t.size, t.size,
                o.samples > 0 ? fmt::format("{} Hammersley samples per texel", o.samples) : std::string("quadrature"));
@@ -125,7 +155,7 @@ void add_bake_dfg(CLI::App& app, Command& command) {
   CLI::App* bake = app.get_subcommand("bake");
   auto o = std::make_shared<DfgCliOptions>();
   auto* sub = bake->add_subcommand("dfg", "split-sum DFG table (scale, bias, albedo) of the GGX model");
-  sub->add_option("--out", o->out, "output file: .exr (float) or .h (C header)")->required();
+  sub->add_option("--out", o->out, "output file: .exr (float), .ktx2 (RG16F; RGBA16F with --multiscatter) or .h (C header)")->required();
   sub->add_option("--size", o->size, "table size N (N x N texels)")->capture_default_str();
   sub->add_option("--samples", o->samples, "Hammersley samples per texel (0: adaptive quadrature)")->capture_default_str();
   sub->add_flag("--multiscatter", o->multiscatter, "add the single-scattering albedo A + B as a third channel");

@@ -9,8 +9,13 @@
 //   below the horizon (a glossy lobe about the mirror direction near grazing); its weight is then 0.
 // - weight = f_r(wi, wo) cos(theta_i) / pdf, the Monte Carlo estimator's factor; 0 where pdf is 0.
 // - If wo is on or below the horizon, sample returns pdf 0 and weight 0.
+// - eval_batch(wi, wo, out, n) is eval over n pairs of contiguous arrays, the same bits as n calls;
+//   eval_batch_checked also checks that every direction is unit length (is_unit_direction).
 #pragma once
 
+#include <cmath>
+#include <cstddef>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -54,6 +59,14 @@ struct KernelBinding {
   }
 };
 
+// The direction test of eval_batch_checked and of the Python module's direction rule: |v|^2 within 4 ulp of
+// 1 (dividing such a vector by its length would move each component by at most an ulp); false for NaN and
+// infinities.
+inline bool is_unit_direction(const Vec3& v) {
+  const double n2 = dot(v, v);
+  return std::abs(n2 - 1.0) <= 4.0 * std::numeric_limits<double>::epsilon();
+}
+
 class Brdf {
  public:
   Brdf() = default;
@@ -62,6 +75,19 @@ class Brdf {
   virtual ~Brdf() = default;
 
   virtual Rgb eval(const Vec3& wi, const Vec3& wo) const = 0;
+  // out[i] = eval(wi[i], wo[i]) for i < n, bit for bit, with the loop inside the model: one virtual call for
+  // the whole batch, the model's state read once and its kernel inlined into the loop. This is how to
+  // evaluate many pairs (bench/python_eval_baseline.cpp measures it against the per-pair loop).
+  void eval_batch(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n) const {
+    (void)eval_pairs(wi, wo, out, n, false);
+  }
+  // The same, checking first that wi[i] and wo[i] are unit length (is_unit_direction): it stops at the first
+  // pair where one is not and returns its index (n when every pair passed), with out written for the pairs
+  // before it only. The check runs in the same loop, under the loads, so it costs next to nothing; the
+  // Python module's Brdf.eval calls this on NumPy's arrays in place.
+  [[nodiscard]] std::size_t eval_batch_checked(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n) const {
+    return eval_pairs(wi, wo, out, n, true);
+  }
   virtual double pdf(const Vec3& wi, const Vec3& wo) const = 0;
   // u picks the direction within a lobe, u_lobe picks the lobe; all three in [0, 1).
   virtual BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const = 0;
@@ -83,8 +109,52 @@ class Brdf {
   // The kernel this model's eval is and its parameter values (see KernelBinding); every registered model
   // has one (the shader tests check), test doubles need none.
   virtual std::optional<KernelBinding> kernel_binding() const { return std::nullopt; }
+
+ protected:
+  // eval_batch (check_unit false) and eval_batch_checked (true). Every registered model overrides it with
+  // eval_kernel_batch (below); this default, for test doubles, calls eval once per pair.
+  virtual std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const;
 };
 
+inline std::size_t Brdf::eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const {
+  for (std::size_t i = 0; i < n; ++i) {
+    if (check_unit && (!is_unit_direction(wi[i]) || !is_unit_direction(wo[i]))) return i;
+    out[i] = eval(wi[i], wo[i]);
+  }
+  return n;
+}
+
 using BrdfPtr = std::unique_ptr<const Brdf>;
+
+// The loop of every model's eval_pairs: out[i] = Kernel(state, wi[i], wo[i]), the same call the model's eval
+// makes. The state is copied into a local once, so the stores to out cannot alias it and it stays in
+// registers; Kernel is a template argument, so the call is direct and inlines (one call site, so the
+// compiler inlines it however large). With check_unit, each block of 64 pairs is checked first, without a
+// branch per pair and in cache for the eval that follows, so the eval loop is the same as without.
+template <auto Kernel, typename State>
+std::size_t eval_kernel_batch(const State& state, const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n,
+                              bool check_unit) {
+  const State s = state;
+  constexpr std::size_t block = 64;
+  for (std::size_t b = 0; b < n; b += block) {
+    std::size_t end = n - b < block ? n : b + block;
+    bool stop = false;
+    if (check_unit) {
+      bool unit = true;
+      for (std::size_t i = b; i < end; ++i) {
+        unit &= is_unit_direction(wi[i]);
+        unit &= is_unit_direction(wo[i]);
+      }
+      if (!unit) {
+        end = b;
+        while (is_unit_direction(wi[end]) && is_unit_direction(wo[end])) ++end;
+        stop = true;
+      }
+    }
+    for (std::size_t i = b; i < end; ++i) out[i] = Kernel(s, wi[i], wo[i]);
+    if (stop) return end;
+  }
+  return n;
+}
 
 }  // namespace shadelab

@@ -20,6 +20,9 @@ class Burley final : public Brdf {
   Burley(const Rgb& kd, double roughness)
       : m_kd(kd), m_roughness(roughness), m_k(kernel::burley_prepare({kd, roughness})) {}
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::burley_eval(m_k, wi, wo); }
+  std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {
+    return eval_kernel_batch<kernel::burley_eval>(m_k, wi, wo, out, n, check_unit);
+  }
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
   // kd: what a game multiplies by diffuse irradiance / pi (Burley's factors are 1 at normal incidence

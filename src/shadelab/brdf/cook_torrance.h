@@ -51,6 +51,10 @@ class CookTorrance final : public LayeredBrdf {
   double distribution(double cos_h) const;
 
  protected:
+  std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {
+    return eval_kernel_batch<kernel::cook_torrance_eval>(m_k, wi, wo, out, n, check_unit);
+  }
+
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 

@@ -53,6 +53,9 @@ class Ggx final : public LayeredBrdf {
 
   explicit Ggx(const Params& p);
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::ggx_eval(m_k, wi, wo); }
+  std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {
+    return eval_kernel_batch<kernel::ggx_eval>(m_k, wi, wo, out, n, check_unit);
+  }
   // The visible-normal samplers' densities jump at their support's edge below the horizon (brdf.h).
   bool pdf_smooth_below_horizon() const override { return false; }
   std::optional<KernelBinding> kernel_binding() const override;

@@ -34,6 +34,10 @@ class Lafortune final : public LayeredBrdf {
   std::optional<KernelBinding> kernel_binding() const override;
 
  protected:
+  std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {
+    return eval_kernel_batch<kernel::lafortune_eval>(m_k, wi, wo, out, n, check_unit);
+  }
+
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 

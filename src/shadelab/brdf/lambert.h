@@ -17,6 +17,11 @@ class Lambert final : public Brdf {
   Rgb diffuse_albedo() const override { return m_kd; }
   std::optional<KernelBinding> kernel_binding() const override;
 
+ protected:
+  std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {
+    return eval_kernel_batch<kernel::lambert_eval>(m_k, wi, wo, out, n, check_unit);
+  }
+
  private:
   Rgb m_kd;
   kernel::LambertParams m_kp;

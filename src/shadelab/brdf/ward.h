@@ -31,6 +31,10 @@ class Ward final : public LayeredBrdf {
   double slope_term(const Vec3& h) const;
 
  protected:
+  std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {
+    return eval_kernel_batch<kernel::ward_eval>(m_k, wi, wo, out, n, check_unit);
+  }
+
   double specular_pdf(const Vec3& wi, const Vec3& wo) const override;
   Vec3 specular_sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
 

@@ -28,6 +28,11 @@ class WrappedDiffuse final : public Brdf {
   double wrap() const { return m_w; }
   std::optional<KernelBinding> kernel_binding() const override;
 
+ protected:
+  std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {
+    return eval_kernel_batch<kernel::wrapped_diffuse_eval>(m_k, wi, wo, out, n, check_unit);
+  }
+
  private:
   Rgb m_kd;
   double m_w;

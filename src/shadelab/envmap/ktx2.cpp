@@ -5,7 +5,11 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <cmath>
+#include <functional>
 #include <numeric>
+
+#include <Imath/half.h>
 
 #include "shadelab/image/image_io.h"
 
@@ -81,9 +85,23 @@ void pad_to(std::vector<char>& out, std::size_t alignment) {
 
 }  // namespace
 
-Result<std::vector<char>> encode_ktx2_cubemap(const std::vector<CubeMap>& levels, TexelFormat format,
-                                              const KtxMetadata& metadata, TexelEncodeInfo* info) {
-  if (auto ok = check_cube_chain(levels, "ktx2"); !ok) return ok.error();
+namespace {
+
+// What differs between a cube map and a 2D texture: the header fields, the DFD samples, and the bytes of
+// each level (appended by `append_level`, which returns false on an encoding it refuses).
+struct Ktx2Layout {
+  std::uint32_t vk_format = 0;
+  std::uint32_t type_size = 0;
+  std::uint32_t texel_bytes = 0;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t faces = 1;
+  std::size_t levels = 1;
+  std::vector<Sample> samples;
+};
+
+Result<std::vector<char>> encode_ktx2(const Ktx2Layout& layout, const KtxMetadata& metadata,
+                                      const std::function<void(std::vector<char>&, std::size_t)>& append_level) {
   KtxMetadata kv = {{"KTXorientation", "rd"}, {"KTXwriter", ktx2_writer_name}};
   for (const auto& [key, value] : metadata) {
     if (key.empty() || key.rfind("KTX", 0) == 0 || key.rfind("ktx", 0) == 0) {
@@ -99,18 +117,16 @@ Result<std::vector<char>> encode_ktx2_cubemap(const std::vector<CubeMap>& levels
     if (kv[i].first == kv[i - 1].first) return make_error("ktx2: metadata key '" + kv[i].first + "' given twice");
   }
 
-  const auto level_count = static_cast<std::uint32_t>(levels.size());
-  const std::uint32_t texel = texel_bytes(format);
-  const std::uint32_t type_size = format == TexelFormat::rgba16f ? 2 : 4;
+  const auto level_count = static_cast<std::uint32_t>(layout.levels);
   std::vector<char> out;
   for (const unsigned char c : ktx2_identifier) out.push_back(static_cast<char>(c));
-  put_u32(out, vk_format(format));
-  put_u32(out, type_size);
-  put_u32(out, static_cast<std::uint32_t>(levels[0].size));  // pixelWidth
-  put_u32(out, static_cast<std::uint32_t>(levels[0].size));  // pixelHeight
-  put_u32(out, 0);                                           // pixelDepth
-  put_u32(out, 0);                                           // layerCount
-  put_u32(out, 6);                                           // faceCount
+  put_u32(out, layout.vk_format);
+  put_u32(out, layout.type_size);
+  put_u32(out, layout.width);   // pixelWidth
+  put_u32(out, layout.height);  // pixelHeight
+  put_u32(out, 0);              // pixelDepth
+  put_u32(out, 0);              // layerCount
+  put_u32(out, layout.faces);   // faceCount
   put_u32(out, level_count);
   put_u32(out, 0);  // supercompressionScheme: none
   const std::size_t index_at = out.size();
@@ -122,16 +138,15 @@ Result<std::vector<char>> encode_ktx2_cubemap(const std::vector<CubeMap>& levels
 
   // Data Format Descriptor.
   const std::size_t dfd_at = out.size();
-  const std::vector<Sample> samples = dfd_samples(format);
-  const auto block_size = static_cast<std::uint32_t>(24 + 16 * samples.size());
+  const auto block_size = static_cast<std::uint32_t>(24 + 16 * layout.samples.size());
   put_u32(out, 4 + block_size);                         // dfdTotalSize
   put_u32(out, 0);                                      // vendorId Khronos (0), descriptorType basic (0)
   put_u32(out, df_version_1_3 | (block_size << 16));    // versionNumber, descriptorBlockSize
   put_u32(out, df_model_rgbsda | (df_primaries_bt709 << 8) | (df_transfer_linear << 16));  // flags 0: straight alpha
   put_u32(out, 0);                                      // texelBlockDimension0..3 = 1 (stored minus 1)
-  put_u32(out, texel);                                  // bytesPlane0 = texel size, bytesPlane1..3 = 0
+  put_u32(out, layout.texel_bytes);                     // bytesPlane0 = texel size, bytesPlane1..3 = 0
   put_u32(out, 0);                                      // bytesPlane4..7
-  for (const Sample& s : samples) {
+  for (const Sample& s : layout.samples) {
     put_u32(out, s.bit_offset | ((s.bit_length - 1) << 16) | (s.channel_type << 24));
     put_u32(out, 0);  // samplePosition0..3
     put_u32(out, s.lower);
@@ -156,19 +171,95 @@ Result<std::vector<char>> encode_ktx2_cubemap(const std::vector<CubeMap>& levels
   set_u32(out, index_at + 12, static_cast<std::uint32_t>(kvd_length));
 
   // Levels, smallest first, each aligned to lcm(texel size, 4).
-  const std::size_t alignment = std::lcm(static_cast<std::size_t>(texel), std::size_t{4});
-  TexelEncodeInfo local;
-  for (std::size_t m = levels.size(); m-- > 0;) {
+  const std::size_t alignment = std::lcm(static_cast<std::size_t>(layout.texel_bytes), std::size_t{4});
+  for (std::size_t m = layout.levels; m-- > 0;) {
     pad_to(out, alignment);
     const std::size_t at = out.size();
-    for (const Image& face : levels[m].faces) append_texels(out, face, format, &local);
+    append_level(out, m);
     const std::uint64_t length = out.size() - at;
     set_u64(out, level_index_at + 24 * m, at);
     set_u64(out, level_index_at + 24 * m + 8, length);
     set_u64(out, level_index_at + 24 * m + 16, length);  // uncompressedByteLength: no supercompression
   }
-  if (info != nullptr) *info = local;
   return out;
+}
+
+}  // namespace
+
+Result<std::vector<char>> encode_ktx2_cubemap(const std::vector<CubeMap>& levels, TexelFormat format,
+                                              const KtxMetadata& metadata, TexelEncodeInfo* info) {
+  if (auto ok = check_cube_chain(levels, "ktx2"); !ok) return ok.error();
+  Ktx2Layout layout;
+  layout.vk_format = vk_format(format);
+  layout.type_size = format == TexelFormat::rgba16f ? 2 : 4;
+  layout.texel_bytes = texel_bytes(format);
+  layout.width = layout.height = static_cast<std::uint32_t>(levels[0].size);
+  layout.faces = 6;
+  layout.levels = levels.size();
+  layout.samples = dfd_samples(format);
+  TexelEncodeInfo local;
+  auto out = encode_ktx2(layout, metadata, [&](std::vector<char>& bytes, std::size_t m) {
+    for (const Image& face : levels[m].faces) append_texels(bytes, face, format, &local);
+  });
+  if (out && info != nullptr) *info = local;
+  return out;
+}
+
+std::uint32_t ktx2_image_vk_format(Ktx2ImageFormat f) { return f == Ktx2ImageFormat::rg16f ? 83 : 97; }
+
+const char* ktx2_image_vk_format_name(Ktx2ImageFormat f) {
+  return f == Ktx2ImageFormat::rg16f ? "VK_FORMAT_R16G16_SFLOAT" : "VK_FORMAT_R16G16B16A16_SFLOAT";
+}
+
+Result<std::vector<char>> encode_ktx2_image(const Image& image, Ktx2ImageFormat format, const KtxMetadata& metadata,
+                                            TexelEncodeInfo* info) {
+  if (image.width < 1 || image.height < 1) return make_error("ktx2: the image is empty");
+  Ktx2Layout layout;
+  layout.vk_format = ktx2_image_vk_format(format);
+  layout.type_size = 2;
+  layout.width = static_cast<std::uint32_t>(image.width);
+  layout.height = static_cast<std::uint32_t>(image.height);
+  if (format == Ktx2ImageFormat::rgba16f) {
+    layout.texel_bytes = 8;
+    layout.samples = dfd_samples(TexelFormat::rgba16f);
+  } else {
+    const std::uint32_t one = std::bit_cast<std::uint32_t>(1.0f);
+    const std::uint32_t minus_one = std::bit_cast<std::uint32_t>(-1.0f);
+    const std::uint32_t sfloat = df_qualifier_float | df_qualifier_signed;
+    layout.texel_bytes = 4;
+    layout.samples = {{0, 16, sfloat | 0, minus_one, one}, {16, 16, sfloat | 1, minus_one, one}};
+  }
+  TexelEncodeInfo local;
+  auto out = encode_ktx2(layout, metadata, [&](std::vector<char>& bytes, std::size_t) {
+    if (format == Ktx2ImageFormat::rgba16f) {
+      append_texels(bytes, image, TexelFormat::rgba16f, &local);
+      return;
+    }
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) {
+        const Rgb c = image.at(x, y);
+        for (const double v : {c.r, c.g}) {
+          float f = static_cast<float>(v);
+          if (std::isfinite(f) && std::abs(f) > half_max) {  // as append_texels: clamp finite values, count them
+            f = std::copysign(half_max, f);
+            ++local.clamped_values;
+          }
+          const std::uint16_t h = Imath::half(f).bits();
+          bytes.push_back(static_cast<char>(h & 0xFF));
+          bytes.push_back(static_cast<char>(h >> 8));
+        }
+      }
+    }
+  });
+  if (out && info != nullptr) *info = local;
+  return out;
+}
+
+Result<bool> write_ktx2_image(const Image& image, const std::filesystem::path& path, Ktx2ImageFormat format,
+                              const KtxMetadata& metadata, TexelEncodeInfo* info) {
+  auto bytes = encode_ktx2_image(image, format, metadata, info);
+  if (!bytes) return make_error(path.string() + ": " + bytes.error().message);
+  return write_file_atomically(path, *bytes);
 }
 
 Result<bool> write_ktx2_cubemap(const std::vector<CubeMap>& levels, const std::filesystem::path& path, TexelFormat format,

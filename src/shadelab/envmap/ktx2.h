@@ -20,6 +20,7 @@
 // start with "KTX"/"ktx", the reserved prefix).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -42,5 +43,16 @@ Result<std::vector<char>> encode_ktx2_cubemap(const std::vector<CubeMap>& levels
 // Encodes and writes atomically (write_file_atomically).
 Result<bool> write_ktx2_cubemap(const std::vector<CubeMap>& levels, const std::filesystem::path& path, TexelFormat format,
                                 const KtxMetadata& metadata = {}, TexelEncodeInfo* info = nullptr);
+
+// A 2D texture (one level, one face; the DFG table of dfg.h): RG16F (VK_FORMAT_R16G16_SFLOAT, 83: the
+// image's R and G, typeSize 2, DFD samples R and G as for RGBA16F) or RGBA16F (97: R, G, B, alpha 1). Rows
+// top to bottom (row 0 at t = 0, KTXorientation "rd"); finite values beyond +-65504 are clamped and counted.
+enum class Ktx2ImageFormat { rg16f, rgba16f };
+std::uint32_t ktx2_image_vk_format(Ktx2ImageFormat f);        // 83, 97
+const char* ktx2_image_vk_format_name(Ktx2ImageFormat f);     // "VK_FORMAT_R16G16_SFLOAT", ...
+Result<std::vector<char>> encode_ktx2_image(const Image& image, Ktx2ImageFormat format, const KtxMetadata& metadata = {},
+                                            TexelEncodeInfo* info = nullptr);
+Result<bool> write_ktx2_image(const Image& image, const std::filesystem::path& path, Ktx2ImageFormat format,
+                              const KtxMetadata& metadata = {}, TexelEncodeInfo* info = nullptr);
 
 }  // namespace shadelab

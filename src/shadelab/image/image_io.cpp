@@ -746,11 +746,9 @@ void remove_stale_temporaries(const fs::path& target) {
   }
 }
 
-// Writes `bytes` to a new temporary file beside `target` (created exclusively, flushed with fsync), then
-// renames it over `target`. On any failure the temporary is removed and `target` is untouched. `who` starts
-// the error message. Signals are held meanwhile (SignalHold).
-Result<bool> write_atomically(const fs::path& target, const std::vector<char>& bytes, const char* who) {
-  const SignalHold hold;
+// Writes `bytes` to a new temporary file beside `target` (created exclusively, flushed with fsync) and
+// returns its path; on failure nothing is left. `who` starts the error message. The caller holds signals.
+Result<fs::path> write_temporary(const fs::path& target, const std::vector<char>& bytes, const char* who) {
   remove_stale_temporaries(target);
   static std::atomic<unsigned> counter{0};
   const auto ticks = static_cast<unsigned long long>(std::chrono::steady_clock::now().time_since_epoch().count());
@@ -762,7 +760,7 @@ Result<bool> write_atomically(const fs::path& target, const std::vector<char>& b
   if (fd < 0) {
     return file_error(who, target, "cannot create a temporary file in its directory: " + errno_message(errno));
   }
-  auto fail = [&](const std::string& what, int err) -> Result<bool> {
+  auto fail = [&](const std::string& what, int err) -> Result<fs::path> {
     ::close(fd);
     ::unlink(tmp.c_str());
     return file_error(who, target, what + ": " + errno_message(err));
@@ -786,10 +784,21 @@ Result<bool> write_atomically(const fs::path& target, const std::vector<char>& b
     ::unlink(tmp.c_str());
     return file_error(who, target, "cannot close: " + errno_message(err));
   }
+  return tmp;
+}
+
+// Writes `bytes` to a new temporary file beside `target`, then renames it over `target`. On any failure the
+// temporary is removed and `target` is untouched. Signals are held meanwhile (SignalHold).
+Result<bool> write_atomically(const fs::path& target, const std::vector<char>& bytes, const char* who) {
+  const SignalHold hold;
+  auto tmp = write_temporary(target, bytes, who);
+  if (!tmp) {
+    return tmp.error();
+  }
   std::error_code ec;
-  fs::rename(tmp, target, ec);
+  fs::rename(*tmp, target, ec);
   if (ec) {
-    ::unlink(tmp.c_str());
+    ::unlink(tmp->c_str());
     return file_error(who, target, "cannot replace the file: " + ec.message());
   }
   return true;
@@ -864,6 +873,63 @@ Result<bool> write_file_atomically(const fs::path& path, const std::vector<char>
   } catch (const std::exception& e) {  // std::bad_alloc from the path strings, at worst
     return file_error("write_file_atomically", path, e.what());
   }
+}
+
+Result<bool> write_files_atomically(const std::vector<std::pair<fs::path, std::vector<char>>>& files) {
+  const SignalHold hold;
+  std::vector<fs::path> temps;
+  auto remove_all = [](const std::vector<fs::path>& paths) {
+    for (const fs::path& p : paths) {
+      if (!p.empty()) {
+        ::unlink(p.c_str());
+      }
+    }
+  };
+  for (const auto& [target, bytes] : files) {
+    auto tmp = write_temporary(target, bytes, "write_files_atomically");
+    if (!tmp) {
+      remove_all(temps);
+      return tmp.error();
+    }
+    temps.push_back(*tmp);
+  }
+  // Every file is complete beside its target. Existing targets get a second name (a hard link, named as a
+  // temporary so a kill -9 leaves nothing stale) so that a failed rename can put them back.
+  std::vector<fs::path> backups(files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const fs::path& target = files[i].first;
+    std::error_code ec;
+    if (fs::is_regular_file(fs::symlink_status(target, ec))) {
+      const fs::path backup = target.parent_path() / ("." + target.filename().string() + ".tmp-" +
+                                                      std::to_string(::getpid()) + "-backup-" + std::to_string(i));
+      ::unlink(backup.c_str());
+      fs::create_hard_link(target, backup, ec);
+      if (!ec) {
+        backups[i] = backup;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    std::error_code ec;
+    fs::rename(temps[i], files[i].first, ec);
+    if (!ec) {
+      continue;
+    }
+    // Undo: the files renamed so far go back to what they were (or away, where there was none).
+    for (std::size_t k = 0; k < i; ++k) {
+      std::error_code undo_ec;
+      if (!backups[k].empty()) {
+        fs::rename(backups[k], files[k].first, undo_ec);
+      } else {
+        fs::remove(files[k].first, undo_ec);
+      }
+    }
+    remove_all(std::vector<fs::path>(temps.begin() + static_cast<std::ptrdiff_t>(i), temps.end()));
+    remove_all(std::vector<fs::path>(backups.begin() + static_cast<std::ptrdiff_t>(i), backups.end()));
+    return file_error("write_files_atomically", files[i].first, "cannot replace the file: " + ec.message());
+  }
+  remove_all(backups);
+  return true;
 }
 
 Result<bool> write_image(const Image& image, const fs::path& path, const WriteOptions& options) {

@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shadelab/core/error.h"
@@ -89,6 +90,13 @@ struct WriteOptions {
 // flushed with fsync), renamed over `path` only when complete. On failure the temporary is removed, an
 // existing `path` is untouched, and the Error names `path`. write_image uses it; so can any other writer.
 Result<bool> write_file_atomically(const std::filesystem::path& path, const std::vector<char>& bytes);
+
+// Writes several files as one step: every file to its temporary first (signals held throughout), then the
+// renames. A failure before the renames leaves every target untouched; a failed rename puts the targets
+// renamed before it back (an existing one from a hard link made beforehand, a new one removed). No
+// temporary is left either way. The Error names the file that failed.
+Result<bool> write_files_atomically(
+    const std::vector<std::pair<std::filesystem::path, std::vector<char>>>& files);
 
 // Writes `image` by extension: .exr (OpenEXR, R G B channels, options above), .hdr / .pic (Radiance RGBE;
 // negative and non-finite values are written as 0, as RGBE cannot hold them), .png (8-bit sRGB, exposure

@@ -1084,5 +1084,33 @@ TEST_F(ImageIo, SigintDuringAWriteEndsTheProcessOnlyAfterTheRename) {
   EXPECT_EQ(listing(), std::vector<std::string>{"big.bin"});
 }
 
+// Several files as one step: all written, or none changed. A directory in the way of the third file makes
+// its rename fail after the first two were renamed; they are put back (the existing one from its hard link,
+// the new one removed) and no temporary or backup is left.
+TEST_F(ImageIo, WriteFilesAtomicallyIsAllOrNothing) {
+  auto read_all = [](const fs::path& p) {
+    const std::vector<unsigned char> b = read_file(p);
+    return std::string(b.begin(), b.end());
+  };
+  auto bytes = [](const std::string& s) { return std::vector<char>(s.begin(), s.end()); };
+  std::ofstream(path("a.bin"), std::ios::binary) << "old a";
+  fs::create_directories(path("c.bin"));
+  const Result<bool> failed = write_files_atomically(
+      {{path("a.bin"), bytes("new a")}, {path("b.bin"), bytes("new b")}, {path("c.bin"), bytes("new c")}});
+  ASSERT_FALSE(failed.has_value());
+  EXPECT_NE(failed.error().message.find("c.bin"), std::string::npos) << failed.error().message;
+  EXPECT_EQ(read_all(path("a.bin")), "old a");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"a.bin", "c.bin"}));
+  // A target in a missing directory fails before any rename: nothing changes either.
+  ASSERT_FALSE(write_files_atomically({{path("a.bin"), bytes("new a")}, {path("none/d.bin"), bytes("d")}}).has_value());
+  EXPECT_EQ(read_all(path("a.bin")), "old a");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"a.bin", "c.bin"}));
+  fs::remove(path("c.bin"));
+  ASSERT_TRUE(write_files_atomically({{path("a.bin"), bytes("new a")}, {path("b.bin"), bytes("new b")}}).has_value());
+  EXPECT_EQ(read_all(path("a.bin")), "new a");
+  EXPECT_EQ(read_all(path("b.bin")), "new b");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"a.bin", "b.bin"}));
+}
+
 }  // namespace
 }  // namespace shadelab
