@@ -20,21 +20,8 @@ namespace fs = std::filesystem;
 using shadelab::testing::expect_usage_error;
 using shadelab::testing::json_of;
 using shadelab::testing::run;
-
-fs::path temp_dir() {
-  static const fs::path dir = shadelab::testing::process_temp_dir("shadelab_cli_bake");
-  return dir;
-}
-
-// A 64 x 32 Radiance HDR of constant 0.5 written byte by byte (flat scan lines; RGBE (128,128,128,128) is
-// 128/256 x 2^(128-128) = 0.5 exactly), so the input does not come from the code under test.
-fs::path constant_hdr() {
-  const fs::path p = temp_dir() / "constant.hdr";
-  std::ofstream f(p, std::ios::binary);
-  f << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 32 +X 64\n";
-  for (int i = 0; i < 64 * 32; ++i) f << static_cast<char>(128) << static_cast<char>(128) << static_cast<char>(128) << static_cast<char>(128);
-  return p;
-}
+using shadelab::testing::temp_dir;
+using shadelab::testing::constant_hdr;
 
 TEST(CliBake, ConstantHalfBakesToHalfInGameUnits) {
   const fs::path in = constant_hdr();

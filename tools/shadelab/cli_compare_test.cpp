@@ -23,11 +23,7 @@ using shadelab::Rgb;
 using shadelab::testing::expect_usage_error;
 using shadelab::testing::json_of;
 using shadelab::testing::run;
-
-fs::path temp_dir() {
-  static const fs::path dir = shadelab::testing::process_temp_dir("shadelab_cli_compare");
-  return dir;
-}
+using shadelab::testing::temp_dir;
 
 Image constant_image(int w, int h, double v) {
   Image img(w, h);

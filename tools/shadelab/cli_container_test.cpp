@@ -20,29 +20,10 @@ namespace fs = std::filesystem;
 using shadelab::testing::expect_usage_error;
 using shadelab::testing::json_of;
 using shadelab::testing::run;
-
-fs::path temp_dir() {
-  static const fs::path dir = shadelab::testing::process_temp_dir("shadelab_cli_container");
-  return dir;
-}
-
-// A 64 x 32 lat-long of constant 0.5 (RGBE (128,128,128,128) = 0.5 exactly), written byte by byte.
-fs::path constant_hdr() {
-  const fs::path p = temp_dir() / "constant.hdr";
-  if (fs::exists(p)) return p;
-  std::ofstream f(p, std::ios::binary);
-  f << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 32 +X 64\n";
-  for (int i = 0; i < 64 * 32 * 4; ++i) f << static_cast<char>(128);
-  return p;
-}
-
-nlohmann::json ktx2_dump(const fs::path& file, const std::string& queries) {
-  return shadelab::testing::run_reader("node " + shadelab::testing::containers_dir() + "/ktx2_dump.mjs " + file.string() + queries);
-}
-
-nlohmann::json dds_dump(const fs::path& file, const std::string& queries) {
-  return shadelab::testing::run_reader("/usr/bin/python3 " + shadelab::testing::containers_dir() + "/dds_dump.py " + file.string() + queries);
-}
+using shadelab::testing::temp_dir;
+using shadelab::testing::ktx2_dump;
+using shadelab::testing::dds_dump;
+using shadelab::testing::constant_hdr;
 
 const char* formats[] = {"rgba16f", "rgba32f", "rg11b10f", "rgb9e5"};
 const int vk[] = {97, 109, 122, 123};

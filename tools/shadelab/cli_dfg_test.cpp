@@ -19,11 +19,7 @@ namespace fs = std::filesystem;
 using shadelab::testing::expect_usage_error;
 using shadelab::testing::json_of;
 using shadelab::testing::run;
-
-fs::path temp_dir() {
-  static const fs::path dir = shadelab::testing::process_temp_dir("shadelab_cli_dfg");
-  return dir;
-}
+using shadelab::testing::temp_dir;
 
 TEST(CliDfg, ExrHoldsScaleBiasAndAlbedoAtTexelCentresWithRowZeroTheSmoothest) {
   const fs::path out = temp_dir() / "dfg.exr";

@@ -23,11 +23,7 @@ namespace fs = std::filesystem;
 using shadelab::testing::expect_usage_error;
 using shadelab::testing::json_of;
 using shadelab::testing::run;
-
-fs::path temp_dir() {
-  static const fs::path dir = shadelab::testing::process_temp_dir("shadelab_cli_harden");
-  return dir;
-}
+using shadelab::testing::temp_dir;
 
 const std::string furnace = std::string(SHADELAB_SCENES_DIR) + "/furnace.json";
 

@@ -24,21 +24,10 @@ namespace fs = std::filesystem;
 using shadelab::testing::expect_usage_error;
 using shadelab::testing::json_of;
 using shadelab::testing::run;
-
-fs::path temp_dir() {
-  static const fs::path dir = shadelab::testing::process_temp_dir("shadelab_cli_ibl");
-  return dir;
-}
-
-// A 64 x 32 lat-long of constant 0.5 (RGBE (128,128,128,128) = 0.5 exactly), written byte by byte.
-fs::path constant_hdr() {
-  const fs::path p = temp_dir() / "constant.hdr";
-  if (fs::exists(p)) return p;
-  std::ofstream f(p, std::ios::binary);
-  f << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 32 +X 64\n";
-  for (int i = 0; i < 64 * 32 * 4; ++i) f << static_cast<char>(128);
-  return p;
-}
+using shadelab::testing::temp_dir;
+using shadelab::testing::ktx2_dump;
+using shadelab::testing::dds_dump;
+using shadelab::testing::constant_hdr;
 
 // Face f, texel (x, y) of the 8 x 8 test cube: distinct values on a 1/64 grid (exact in float).
 shadelab::Rgb cross_texel(int f, int x, int y) { return {0.25 + f / 8.0, 0.5 + (x + 8 * y) / 64.0, 2.0 - (x * y) / 64.0}; }
@@ -53,14 +42,6 @@ fs::path cross_exr() {
       for (int x = 0; x < 8; ++x) cube.set(f, x, y, cross_texel(f, x, y));
   EXPECT_TRUE(shadelab::write_image(shadelab::cube_to_cross(cube, shadelab::CrossLayout::horizontal), p).has_value());
   return p;
-}
-
-nlohmann::json ktx2_dump(const fs::path& file, const std::string& queries = "") {
-  return shadelab::testing::run_reader("node " + shadelab::testing::containers_dir() + "/ktx2_dump.mjs " + file.string() + queries);
-}
-
-nlohmann::json dds_dump(const fs::path& file, const std::string& queries = "") {
-  return shadelab::testing::run_reader("/usr/bin/python3 " + shadelab::testing::containers_dir() + "/dds_dump.py " + file.string() + queries);
 }
 
 nlohmann::json read_json(const fs::path& p) {

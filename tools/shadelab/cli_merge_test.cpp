@@ -14,11 +14,7 @@ namespace fs = std::filesystem;
 using shadelab::testing::expect_usage_error;
 using shadelab::testing::json_of;
 using shadelab::testing::run;
-
-fs::path temp_dir() {
-  static const fs::path dir = shadelab::testing::process_temp_dir("shadelab_cli_merge");
-  return dir;
-}
+using shadelab::testing::temp_dir;
 
 // 40 x 24, 16 spp (tests/scale-out/scene.json).
 const std::string scene = std::string(SHADELAB_SCENES_DIR) + "/../tests/scale-out/scene.json";

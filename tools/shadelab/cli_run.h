@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <filesystem>
@@ -23,6 +24,28 @@ inline std::filesystem::path process_temp_dir(const std::string& name) {
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d;
+}
+
+// This process's folder for the running test suite ("shadelab_SUITE_PID"), made fresh the first time the
+// suite asks for it in this process. Outside a test (static initialisation) the suite is "shadelab_cli".
+inline std::filesystem::path temp_dir() {
+  static std::map<std::string, std::filesystem::path> dirs;
+  const ::testing::TestSuite* suite = ::testing::UnitTest::GetInstance()->current_test_suite();
+  const std::string name = std::string("shadelab_") + (suite != nullptr ? suite->name() : "cli");
+  auto it = dirs.find(name);
+  if (it == dirs.end()) it = dirs.emplace(name, process_temp_dir(name)).first;
+  return it->second;
+}
+
+// A 64 x 32 Radiance HDR lat-long of constant 0.5, written byte by byte (flat scan lines; RGBE
+// (128,128,128,128) = 128/256 x 2^(128-128) = 0.5 exactly), so the input does not come from the code under test.
+// Written again on every call: a test may have overwritten it.
+inline std::filesystem::path constant_hdr() {
+  const std::filesystem::path p = temp_dir() / "constant.hdr";
+  std::ofstream f(p, std::ios::binary);
+  f << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 32 +X 64\n";
+  for (int i = 0; i < 64 * 32 * 4; ++i) f << static_cast<char>(128);
+  return p;
 }
 
 struct CliRun {

@@ -75,18 +75,6 @@ Vec3 CookTorrance::specular_sample(const Vec3& wo, Vec2 u, double) const {
   return reflect(wo, h);
 }
 
-namespace {
-
-template <typename E>
-E pick(const std::string& word, std::initializer_list<std::pair<const char*, E>> table) {
-  for (const auto& [name, value] : table) {
-    if (word == name) return value;
-  }
-  return table.begin()->second;
-}
-
-}  // namespace
-
 ModelInfo cook_torrance_model() {
   ModelInfo info;
   info.name = "cook-torrance";
@@ -123,13 +111,13 @@ ModelInfo cook_torrance_model() {
                           " gives a negative Blinn-Phong exponent; m must be <= sqrt(2) with d=blinn-phong");
       }
     }
-    q.d = pick<CookTorrance::Distribution>(p.choice("d"), {{"beckmann", CookTorrance::Distribution::beckmann},
+    q.d = pick_choice<CookTorrance::Distribution>(p.choice("d"), {{"beckmann", CookTorrance::Distribution::beckmann},
                                                            {"blinn-phong", CookTorrance::Distribution::blinn_phong},
                                                            {"ggx", CookTorrance::Distribution::ggx}});
-    q.g = pick<CookTorrance::Geometry>(p.choice("g"), {{"smith", CookTorrance::Geometry::smith},
+    q.g = pick_choice<CookTorrance::Geometry>(p.choice("g"), {{"smith", CookTorrance::Geometry::smith},
                                                        {"cook-torrance", CookTorrance::Geometry::cook_torrance},
                                                        {"kelemen", CookTorrance::Geometry::kelemen}});
-    q.f = pick<CookTorrance::FresnelKind>(p.choice("f"), {{"schlick", CookTorrance::FresnelKind::schlick},
+    q.f = pick_choice<CookTorrance::FresnelKind>(p.choice("f"), {{"schlick", CookTorrance::FresnelKind::schlick},
                                                           {"dielectric", CookTorrance::FresnelKind::dielectric},
                                                           {"conductor", CookTorrance::FresnelKind::conductor},
                                                           {"none", CookTorrance::FresnelKind::none}});

@@ -81,18 +81,6 @@ Vec3 Ggx::specular_sample(const Vec3& wo, Vec2 u, double) const {
   return reflect(wo, h);
 }
 
-namespace {
-
-template <typename E>
-E pick(const std::string& word, std::initializer_list<std::pair<const char*, E>> table) {
-  for (const auto& [name, value] : table) {
-    if (word == name) return value;
-  }
-  return table.begin()->second;
-}
-
-}  // namespace
-
 ModelInfo ggx_model() {
   ModelInfo info;
   info.name = "ggx";
@@ -136,7 +124,7 @@ ModelInfo ggx_model() {
     } else {
       q.alpha_x = q.alpha_y = p.scalar("alpha");
     }
-    q.f = pick<Ggx::FresnelKind>(p.choice("f"), {{"schlick", Ggx::FresnelKind::schlick},
+    q.f = pick_choice<Ggx::FresnelKind>(p.choice("f"), {{"schlick", Ggx::FresnelKind::schlick},
                                                  {"dielectric", Ggx::FresnelKind::dielectric},
                                                  {"conductor", Ggx::FresnelKind::conductor},
                                                  {"none", Ggx::FresnelKind::none}});
@@ -145,7 +133,7 @@ ModelInfo ggx_model() {
     q.k = p.color("k");
     q.g = p.choice("g") == "smith-separable" ? Ggx::Geometry::smith_separable : Ggx::Geometry::smith_correlated;
     q.ms = p.choice("ms") == "kulla-conty" ? Ggx::MultipleScattering::kulla_conty : Ggx::MultipleScattering::none;
-    q.sampler = pick<Ggx::Sampler>(p.choice("sampling"), {{"vndf-bounded", Ggx::Sampler::vndf_bounded},
+    q.sampler = pick_choice<Ggx::Sampler>(p.choice("sampling"), {{"vndf-bounded", Ggx::Sampler::vndf_bounded},
                                                           {"ndf", Ggx::Sampler::ndf},
                                                           {"vndf", Ggx::Sampler::vndf},
                                                           {"vndf-caps", Ggx::Sampler::vndf_caps}});

@@ -3,6 +3,7 @@
 // so a bad value is reported the same way everywhere: one line naming the model and the parameter.
 #pragma once
 
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <string_view>
@@ -30,6 +31,16 @@ inline const char* param_kind_name(ParamKind k) {
     case ParamKind::lobes: return "lobes";
   }
   return "?";
+}
+
+// The enumerator a choice parameter's word names; the table's first entry for a word not in it (parse_params
+// has already refused words outside the declared choices, so that only happens for a model's own default).
+template <typename E>
+E pick_choice(const std::string& word, std::initializer_list<std::pair<const char*, E>> table) {
+  for (const auto& [name, value] : table) {
+    if (word == name) return value;
+  }
+  return table.begin()->second;
 }
 
 struct ParamSpec {

@@ -72,6 +72,15 @@ inline nlohmann::json run_reader(const std::string& command) {
 
 inline std::string containers_dir() { return std::string(SHADELAB_SOURCE_DIR) + "/tools/containers"; }
 
+// The independent readers: ktx-parse in Node (ktx2_dump.mjs) and dds_dump.py in Debian's Python, on a file
+// with optional texel queries (" L:F:X:Y ..."); their JSON report.
+inline nlohmann::json ktx2_dump(const std::filesystem::path& file, const std::string& queries = "") {
+  return run_reader("node " + containers_dir() + "/ktx2_dump.mjs " + file.string() + queries);
+}
+inline nlohmann::json dds_dump(const std::filesystem::path& file, const std::string& queries = "") {
+  return run_reader("/usr/bin/python3 " + containers_dir() + "/dds_dump.py " + file.string() + queries);
+}
+
 // The texel queries "LEVEL:FACE:X:Y" the readers take: every level, every face, two texels each.
 inline std::vector<std::array<int, 4>> texel_queries(int size) {
   std::vector<std::array<int, 4>> q;

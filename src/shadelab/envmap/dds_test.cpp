@@ -23,8 +23,7 @@ TEST(Dds, EveryFormatReadsBackWithAnIndependentReader) {
     SCOPED_TRACE(texel_format_name(f));
     const auto path = container_temp_dir() / (std::string("exact_") + texel_format_name(f) + ".dds");
     ASSERT_TRUE(write_dds_cubemap(chain, path, f).has_value());
-    const auto j = testing::run_reader("/usr/bin/python3 " + testing::containers_dir() + "/dds_dump.py " + path.string() +
-                                       testing::query_args(queries));
+    const auto j = testing::dds_dump(path, testing::query_args(queries));
     ASSERT_TRUE(j.is_object());
     EXPECT_TRUE(j["problems"].empty()) << j["problems"].dump();
     EXPECT_EQ(j["dxgiFormat"], dxgi_format(f));

@@ -18,9 +18,7 @@ using testing::container_temp_dir;
 using testing::exact_chain;
 using testing::exact_texel;
 
-nlohmann::json dump(const std::filesystem::path& file, const std::string& queries) {
-  return testing::run_reader("node " + testing::containers_dir() + "/ktx2_dump.mjs " + file.string() + queries);
-}
+nlohmann::json dump(const std::filesystem::path& file, const std::string& queries) { return testing::ktx2_dump(file, queries); }
 
 // The DFD samples each format must have (Khronos Data Format Specification 1.3; KTX-Software writes the same):
 // {bitOffset, bitLength - 1, channelType (channel id | qualifiers F 0x80, S 0x40, E 0x20), lower, upper}.
