@@ -85,16 +85,17 @@ TEST(CliExplore, NoHdriFolderIsNoError) {
 
 // The renderer's bake sizes, which the explorer's sphere test renders with.
 TEST(CliExplore, RenderBakeSizeFlags) {
-  const auto scene = process_temp_dir("explore_render") / "s.json";  // a small scene: the built-in one loads slowly
+  const auto dir = process_temp_dir("explore_render");
+  const auto scene = dir / "s.json";  // a small scene: the built-in one loads slowly
   std::ofstream(scene) << R"({"materials": {"m": {"model": "lambert"}},
                              "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})";
-  const CliRun a = run("render " + scene.string() + " --env-size 32 --out " + (process_temp_dir("explore_render") / "a.exr").string());
+  const CliRun a = run("render " + scene.string() + " --env-size 32 --out " + (dir / "a.exr").string());
   EXPECT_EQ(a.code, 2);
   EXPECT_NE(a.err.find("--env-size"), std::string::npos) << a.err;
-  const CliRun b = run("render " + scene.string() + " --mode game --specular-size 48 --out " + (process_temp_dir("explore_render") / "b.exr").string());
+  const CliRun b = run("render " + scene.string() + " --mode game --specular-size 48 --out " + (dir / "b.exr").string());
   EXPECT_EQ(b.code, 2);
   EXPECT_NE(b.err.find("--specular-size"), std::string::npos) << b.err;
-  const CliRun c = run("render " + scene.string() + " --mode game --env-size 0 --out " + (process_temp_dir("explore_render") / "c.exr").string());
+  const CliRun c = run("render " + scene.string() + " --mode game --env-size 0 --out " + (dir / "c.exr").string());
   EXPECT_EQ(c.code, 2);
   EXPECT_NE(c.err.find("--env-size"), std::string::npos) << c.err;
 }
