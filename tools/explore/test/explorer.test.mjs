@@ -99,6 +99,32 @@ test('albedo and probed f_r in the DOM equal the CLI to 1e-12', async () => {
   zoo.rows.forEach((r, i) => relClose([s.zoo.rows[i].numeric, s.zoo.rows[i].closed_form_value], [r.numeric, r.closed_form_value], `zoo ${r.model}`));
 });
 
+// Several models at once: the overlaid models' albedo curves are the CLI's, their lobes the library's (the
+// same numbers as the model opened on its own), and the button adds the current model to the URL.
+test('several models overlaid: their albedo and lobe are the library\'s', async () => {
+  const s = await open('?model=phong&n=100&kd=0&ks=1&overlay=lambert:kd=0.5;cook-torrance:m=0.2:f0=1,0.78,0.34');
+  assert.deepEqual(s.errors, []);
+  assert.equal(new URL(page.url()).searchParams.get('overlay'), 'lambert:kd=0.5;cook-torrance:m=0.2:f0=1,0.78,0.34');
+  assert.deepEqual(s.overlays.map((o) => o.model), ['lambert', 'cook-torrance']);
+  for (const o of s.overlays) {
+    const p = Object.entries(o.params).flatMap(([k, v]) => ['-p', `${k}=${v}`]);
+    const albedo = cliJson(['brdf', 'albedo', o.model, ...p, '--json', '--theta', ...o.albedo_curve.theta.map(String)]);
+    albedo.albedo.forEach((a, i) => relClose(o.albedo_curve.albedo[i], a, `overlay ${o.model} albedo at ${albedo.theta[i]}`));
+  }
+  const alone = await open('?model=cook-torrance&m=0.2&f0=1,0.78,0.34');
+  assert.deepEqual(alone.lobe.luminance, s.overlays[1].lobe.luminance);
+  const before = await page.evaluate(() => document.body.dataset.ready);
+  await page.click('#shadelab-overlay-add');
+  await page.waitForFunction((b) => document.body.dataset.ready !== b, before);
+  const added = JSON.parse(await page.locator('#shadelab-state').textContent());
+  assert.equal(added.view.overlay, 'cook-torrance:m=0.2:f0=1,0.78,0.34');
+  assert.deepEqual(added.overlays[0].albedo_curve, alone.albedo_curve);
+  if (shots) {
+    await open('?model=phong&n=100&kd=0&ks=1&scale=log&overlay=blinn-phong-modified:n=400:kd=0;cook-torrance:kd=0:m=0.2');
+    await page.locator('#views').screenshot({ path: path.join(shots, 'explorer-overlay.png') });
+  }
+});
+
 test('the exported shader of the export button is the CLI export', async () => {
   await open(query(CASES[0]));
   await page.selectOption('#shadelab-export-lang', 'hlsl');
@@ -135,7 +161,8 @@ test('the URL state round-trips', async () => {
 test('a bad URL parameter shows a message naming it and the page still draws', async () => {
   for (const [q, name] of [['?model=phong&n=-1', "'n'"], ['?model=no-such-model', "'model'"], ['?model=phong&colour=1', "'colour'"],
                            ['?model=phong&theta=0,95', "'theta'"], ['?model=phong&wi=1,2', "'wi'"], ['?model=lambert&kd=abc', "'kd'"],
-                           ['?model=phong&lighting=sun', "'lighting'"], ['?model=phong&lighting=hdri&env=nosuch', "'env'"]]) {
+                           ['?model=phong&lighting=sun', "'lighting'"], ['?model=phong&lighting=hdri&env=nosuch', "'env'"],
+                           ['?model=phong&overlay=nosuch', "'overlay'"], ['?model=phong&overlay=lambert:kd=-1', "'overlay'"]]) {
     const s = await open(q);
     const box = page.locator('#shadelab-error');
     assert.ok(await box.isVisible(), q);

@@ -27,7 +27,10 @@
     tone: 'clamp',
     lighting: 'point',
     env: ENVIRONMENTS.default || 'forest',
+    overlay: '',
   };
+  // Overlaid models, drawn over the lobe and albedo views in these colours (the first model keeps its own).
+  const OVERLAY_COLOURS = ['#6a1b9a', '#00838f', '#ef6c00', '#5d4037', '#ad1457', '#558b2f'];
   const DEFAULT_MODEL = 'blinn-phong-modified';
   // The sphere's view: the C++ game renderer's pinhole camera (render/game_renderer.cpp) with these values;
   // the tests render the same scene with `shadelab render --mode game` (docs/explorer.md).
@@ -125,6 +128,7 @@
         if (!['point', 'hdri', 'both'].includes(view.lighting)) throw new Error(`URL parameter 'lighting': '${view.lighting}' is not point, hdri or both`);
         if (view.lighting !== 'point' && ENVIRONMENTS.names.length === 0) throw new Error(`URL parameter 'lighting': ${ENVIRONMENTS.message}`);
       },
+      overlay: () => parseOverlay(view.overlay),
       env: () => {
         if (ENVIRONMENTS.names.length > 0 && !ENVIRONMENTS.names.includes(view.env)) {
           throw new Error(`URL parameter 'env': unknown HDRI '${view.env}' (HDRIs: ${ENVIRONMENTS.names.join(', ')})`);
@@ -137,12 +141,38 @@
     return { state: { model, params, view }, problems };
   }
 
+  // `overlay`: models drawn over the first, SPEC;SPEC with SPEC = model[:name=value]... (values as in the URL,
+  // e.g. lambert:kd=0.5;cook-torrance:m=0.2:f0=1,0.78,0.34). Each through the library's own validation;
+  // throws naming the URL parameter.
+  function parseOverlay(text) {
+    if (text === '') return [];
+    const specs = String(text).split(';');
+    if (specs.length > OVERLAY_COLOURS.length) throw new Error(`URL parameter 'overlay': at most ${OVERLAY_COLOURS.length} models`);
+    return specs.map((spec) => {
+      const [model, ...assignments] = spec.split(':');
+      if (!modelInfo(model)) throw new Error(`URL parameter 'overlay': unknown model '${model}' (models: ${models.map((m) => m.name).join(', ')})`);
+      const params = {};
+      for (const a of assignments) {
+        const eq = a.indexOf('=');
+        if (eq <= 0) throw new Error(`URL parameter 'overlay': '${a}' in '${spec}' is not name=value`);
+        params[a.slice(0, eq)] = a.slice(eq + 1);
+      }
+      const probe = call({ op: 'eval', model, params, wi: [0, 0, 1], wo: [0, 0, 1] });
+      if (probe.error) throw new Error(`URL parameter 'overlay': ${spec}: ${probe.error}`);
+      return { model, params };
+    });
+  }
+
+  function overlaySpec(model, params) {
+    return [model, ...Object.entries(params).map(([k, v]) => `${k}=${v}`)].join(':');
+  }
+
   function queryFromState(s) {
     const q = new URLSearchParams();
     q.set('model', s.model);
     for (const [k, v] of Object.entries(s.params)) q.set(k, v);
     for (const [k, v] of Object.entries(s.view)) q.set(k, v);
-    return '?' + q.toString().replace(/%2C/g, ',');
+    return '?' + q.toString().replace(/%2C/g, ',').replace(/%3A/g, ':').replace(/%3B/g, ';').replace(/%3D/g, '=');
   }
 
   // ---- controls ---------------------------------------------------------------------------------------
@@ -211,7 +241,7 @@
   const VIEW_FIELDS = { theta: 'shadelab-theta', wi: 'shadelab-wi', wo: 'shadelab-wo', theta_in: 'shadelab-theta-in',
                         fixed: 'shadelab-fixed', scale: 'shadelab-scale', units: 'shadelab-units', light_pos: 'shadelab-light-pos',
                         light: 'shadelab-light', exposure: 'shadelab-exposure', tone: 'shadelab-tone',
-                        lighting: 'shadelab-lighting', env: 'shadelab-env' };
+                        lighting: 'shadelab-lighting', env: 'shadelab-env', overlay: 'shadelab-overlay' };
 
   function syncViewControls() {
     $('shadelab-model').value = state.model;
@@ -247,6 +277,16 @@
         if (errors.length === 0) { state.view = parsed.state.view; changed(); }
       });
     }
+    $('shadelab-overlay-add').addEventListener('click', () => {
+      const spec = overlaySpec(state.model, state.params);
+      const list = state.view.overlay === '' ? [] : state.view.overlay.split(';');
+      if (list.length >= OVERLAY_COLOURS.length) list.shift();
+      list.push(spec);
+      state.view.overlay = list.join(';');
+      $('shadelab-overlay').value = state.view.overlay;
+      changed();
+    });
+    $('shadelab-overlay-clear').addEventListener('click', () => { state.view.overlay = ''; $('shadelab-overlay').value = ''; changed(); });
     $('shadelab-cos').addEventListener('change', () => { state.view.cos = $('shadelab-cos').checked ? '1' : '0'; changed(); });
     $('shadelab-export').addEventListener('click', () => {
       const lang = $('shadelab-export-lang').value;
@@ -279,14 +319,26 @@
     return v > 0 ? Math.max(0, (Math.log10(v) - lo) / 4) : 0;
   }
 
-  function drawLobe(lobe) {
+  function drawLobe(lobe, overlays) {
     const c = $('shadelab-lobe'); const ctx = c.getContext('2d');
     axes(ctx, c.width, c.height);
     const ox = c.width / 2, oy = c.height - 12, r = Math.min(ox, oy) - 8;
     ctx.beginPath(); ctx.moveTo(8, oy); ctx.lineTo(c.width - 8, oy); ctx.stroke();
     ctx.beginPath(); ctx.arc(ox, oy, r, Math.PI, 0); ctx.stroke();
-    const max = Math.max(...lobe.luminance);
+    const max = Math.max(...lobe.luminance, ...overlays.flatMap((o) => o.lobe.luminance));
     const log = state.view.scale === 'log';
+    overlays.forEach((o, k) => {
+      ctx.strokeStyle = OVERLAY_COLOURS[k]; ctx.lineWidth = 1.5; ctx.beginPath();
+      o.lobe.angle.forEach((a, i) => {
+        const s = r * scaleValue(o.lobe.luminance[i], max, log);
+        const x = ox + s * Math.sin(a * Math.PI / 180), y = oy - s * Math.cos(a * Math.PI / 180);
+        if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+      });
+      ctx.stroke();
+      ctx.fillStyle = OVERLAY_COLOURS[k]; ctx.font = '11px sans-serif';
+      ctx.fillText(o.model, c.width - 150, 14 + 13 * k);
+    });
+    ctx.strokeStyle = '#bbb'; ctx.lineWidth = 1;
     const fixedAngle = -Number(state.view.theta_in) * Math.PI / 180;
     ctx.strokeStyle = '#e65100';
     ctx.beginPath(); ctx.moveTo(ox, oy); ctx.lineTo(ox + r * Math.sin(fixedAngle), oy - r * Math.cos(fixedAngle)); ctx.stroke();
@@ -334,11 +386,27 @@
     }
   }
 
-  function drawAlbedo(curve) {
+  function drawAlbedo(curve, overlays) {
     const c = $('shadelab-albedo'); const ctx = c.getContext('2d');
     axes(ctx, c.width, c.height);
     const x0 = 30, y0 = c.height - 20, w = c.width - 40, h = c.height - 40;
-    const top = Math.max(1.1, ...curve.albedo.flat()) * 1.05;
+    const top = Math.max(1.1, ...curve.albedo.flat(), ...overlays.flatMap((o) => o.albedo_curve.albedo.flat())) * 1.05;
+    // Each overlaid model: its r, g, b curves in its colour, dashed 6/2, 2/2 and 1/1.
+    overlays.forEach((o, m) => {
+      ctx.strokeStyle = OVERLAY_COLOURS[m]; ctx.lineWidth = 1;
+      [[6, 2], [2, 2], [1, 1]].forEach((dash, k) => {
+        ctx.setLineDash(dash); ctx.beginPath();
+        o.albedo_curve.theta.forEach((t, i) => {
+          const x = x0 + w * t / 90, y = y0 - h * o.albedo_curve.albedo[i][k] / top;
+          if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+        });
+        ctx.stroke();
+      });
+      ctx.setLineDash([]);
+      ctx.fillStyle = OVERLAY_COLOURS[m]; ctx.font = '11px sans-serif';
+      ctx.fillText(o.model, x0 + w - 150, 14 + 13 * m);
+    });
+    ctx.strokeStyle = '#bbb';
     ctx.beginPath(); ctx.moveTo(x0, y0 - h); ctx.lineTo(x0, y0); ctx.lineTo(x0 + w, y0); ctx.stroke();
     ctx.setLineDash([4, 3]); ctx.strokeStyle = '#000';
     ctx.beginPath(); ctx.moveTo(x0, y0 - h / top); ctx.lineTo(x0 + w, y0 - h / top); ctx.stroke();
@@ -686,7 +754,13 @@ void main() {
     const nParam = info.params.find((p) => p.name === 'n' && p.kind === 'scalar');
     const zooN = nParam ? Number(effective('n')) : 100;
     const zoo = call({ op: 'zoo', n: zooN });
-    const failed = [probe, albedo, curve, lobe, lobe3d, zoo].find((r) => r.error);
+    const overlays = parseOverlay(v.overlay).map((o) => {
+      const b = { model: o.model, params: o.params };
+      const oc = call(Object.assign({ op: 'albedo', theta: ALBEDO_CURVE }, b));
+      const ol = call(Object.assign({ op: 'lobe', theta_in: thetaIn, times_cos: v.cos === '1', fixed: v.fixed, samples: 361 }, b));
+      return { model: o.model, params: o.params, albedo_curve: oc, lobe: ol };
+    });
+    const failed = [probe, albedo, curve, lobe, lobe3d, zoo, ...overlays.flatMap((o) => [o.albedo_curve, o.lobe])].find((r) => r.error);
     if (failed) {
       // Still a state (with the error) and the ready mark: a script waiting on the page is told.
       errors = [failed.error];
@@ -695,9 +769,9 @@ void main() {
       document.body.dataset.ready = String(Number(document.body.dataset.ready || 0) + 1);
       return;
     }
-    drawLobe(lobe);
+    drawLobe(lobe, overlays);
     drawLobe3d(lobe3d);
-    drawAlbedo(curve);
+    drawAlbedo(curve, overlays);
     const probeState = { wi, wo, f: probe.f };
     fillTables(albedo, probeState, { n: zooN, rows: zoo.rows });
     try { drawSphere(); } catch (e) { sphereError = e.message; }
@@ -721,6 +795,8 @@ void main() {
       all_params: Object.fromEntries(info.params.map((p) => [p.name, effective(p.name)])), theta: albedo.theta, albedo: albedo.albedo,
       probe: probeState, query, view: Object.assign({}, v),
       albedo_curve: { theta: curve.theta, albedo: curve.albedo },
+      overlays: overlays.map((o) => ({ model: o.model, params: o.params, albedo_curve: { theta: o.albedo_curve.theta, albedo: o.albedo_curve.albedo },
+                                       lobe: { angle: o.lobe.angle, luminance: o.lobe.luminance } })),
       lobe: { theta_in: thetaIn, fixed: v.fixed, times_cos: v.cos === '1', angle: lobe.angle, luminance: lobe.luminance },
       zoo: { n: zooN, rows: zoo.rows.map((r) => ({ model: r.model, closed_form_value: r.closed_form_value, numeric: r.numeric,
                                                    relative_error: r.relative_error, lower: r.lower, upper: r.upper })) },
