@@ -336,7 +336,7 @@ test('without blender-data the page says so and keeps the point light', async ()
 test('no console error on any page load', async () => {
   if (shots) {
     fs.mkdirSync(shots, { recursive: true });
-    await open('?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&units=game&light=2&light_pos=2,2,3&scale=log');
+    await open('?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&units=game&light=2&light_pos=2,2,3&scale=log&lighting=both&env=studio');
     await page.screenshot({ path: path.join(shots, 'explorer.png'), fullPage: true });
     await open('?model=phong&n=-1');
     await page.locator('#shadelab-error').screenshot({ path: path.join(shots, 'explorer-error.png') });
