@@ -254,6 +254,7 @@ test('the WebGL 2 sphere matches the C++ game renderer within 1/255 mean absolut
     '?model=blinn-phong-modified&n=300&kd=0.1,0.35,0.12&ks=0.2&units=game&light=2&light_pos=2,2,3',
     '?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&units=radiometric&light=20&light_pos=-2,3,4&exposure=-1',
     '?model=lambert&kd=0.8&units=game&light=1&light_pos=0,0,5&tone=filmic&exposure=1',
+    '?model=ggx&units=game&light=2&light_pos=2,2,3',
   ];
   for (const [i, q] of views.entries()) {
     const s = await open(q);
@@ -284,6 +285,7 @@ const HDRI_VIEWS = [
   '?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&lighting=both&env=studio&light=2&exposure=-0.5',
   '?model=phong&kd=0.2&ks=0.8&n=1000&lighting=hdri&env=city&exposure=1',
   '?model=wrapped-diffuse&kd=0.7,0.5,0.3&w=0.5&lighting=hdri&env=sunset&tone=filmic&exposure=1',
+  '?model=ggx&lighting=hdri&env=courtyard',
 ];
 
 test('the HDRI-lit sphere matches the C++ game renderer within 1/255 mean absolute difference', async (t) => {

@@ -450,6 +450,7 @@
   let gl = null, program = null, programSource = '', sphereError = '';
   let displayKernels = null;
   const MAX_BLOCKS = 12;
+  let tablesBuffer = null;
   const envTextures = {};  // name -> WebGL texture
   const envLoads = {};     // name -> 'loading' | 'loaded' | error message
 
@@ -708,6 +709,17 @@ void main() {
       gl.uniform1f(u('u_gloss_scale'), env.gloss_scale);
       gl.uniform1f(u('u_gloss_bias'), env.gloss_bias);
       gl.uniform3fv(u('u_sh.c[0]'), env.sh.flat());
+    }
+    if (ex.tables_block) {
+      // The GGX energy tables' uniform block (the bytes `shadelab shader --tables-out` writes), binding point 1.
+      const index = gl.getUniformBlockIndex(program, ex.tables_block);
+      if (index !== gl.INVALID_INDEX) {
+        if (!tablesBuffer) tablesBuffer = gl.createBuffer();
+        gl.bindBuffer(gl.UNIFORM_BUFFER, tablesBuffer);
+        gl.bufferData(gl.UNIFORM_BUFFER, new Uint8Array(ex.tables), gl.STATIC_DRAW);
+        gl.uniformBlockBinding(program, index, 1);
+        gl.bindBufferBase(gl.UNIFORM_BUFFER, 1, tablesBuffer);
+      }
     }
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     sphereError = '';
