@@ -5,28 +5,157 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <bit>
+#include <chrono>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "shadelab/envmap/prefilter.h"
 #include "shadelab/image/image_io.h"
+#include "shadelab/render/env_light.h"
+#include "shadelab/render/game_renderer.h"
+#include "shadelab/scene/limits.h"
+#include "webgl.h"
 
 namespace shadelab::explore {
 
 namespace fs = std::filesystem;
 
-Result<std::vector<fs::path>> write_site(const fs::path& dir) {
+namespace {
+
+using nlohmann::json;
+
+bool valid_env_name(const std::string& name) {
+  if (name.empty() || name.size() > 64) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+  });
+}
+
+std::vector<char> js_assignment(const std::string& lhs, const json& value) {
+  const std::string text = lhs + " = " + value.dump(-1, ' ', true, json::error_handler_t::replace) + ";\n";
+  return {text.begin(), text.end()};
+}
+
+// One lat-long map through the game renderer's bake (the environment of a scene {"environment": {"file":
+// path}}, scale 1), packed as env-NAME.js describes (site.h).
+Result<json> bake_environment(const std::string& name, const fs::path& file, int size) {
+  auto image = read_image(file);
+  if (!image) return image.error();
+  if (image->width != 2 * image->height) {
+    return make_error("'" + file.string() + "' is " + std::to_string(image->width) + " x " + std::to_string(image->height) +
+                      "; a lat-long map is twice as wide as it is high");
+  }
+  Scene scene;
+  scene.environment.kind = Environment::Kind::image;
+  scene.environment.latlong = std::move(image).value();
+  scene.environment.source = file.string();
+  if (auto limits = check_scene_limits(scene); !limits) return limits.error();
+  GameOptions go;
+  go.environment_size = size;
+  go.specular_size = size;
+  const EnvironmentLight light(scene);
+  auto baked = bake_game_environment(light, go);
+  if (!baked) return baked.error();
+  std::vector<const CubeMap*> blocks = {&baked->radiance};
+  for (const CubeMap& level : baked->specular.levels) blocks.push_back(&level);
+  const int width = size;
+  int height = 0;
+  json block_list = json::array();
+  for (const CubeMap* c : blocks) {
+    block_list.push_back({{"size", c->size}, {"row", height}});
+    height += 6 * c->size;
+  }
+  std::vector<float> texels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3, 0.0f);
+  int row = 0;
+  for (const CubeMap* c : blocks) {
+    for (int f = 0; f < 6; ++f) {
+      for (int y = 0; y < c->size; ++y, ++row) {
+        for (int x = 0; x < c->size; ++x) {
+          const Image& face = c->faces[static_cast<std::size_t>(f)];
+          const std::size_t from = face.index(x, y);
+          const std::size_t to = (static_cast<std::size_t>(row) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
+          for (int k = 0; k < 3; ++k) texels[to + static_cast<std::size_t>(k)] = face.data[from + static_cast<std::size_t>(k)];
+        }
+      }
+    }
+  }
+  static_assert(std::endian::native == std::endian::little, "the page reads little-endian float32");
+  json sh = json::array();
+  for (const Rgb& c : baked->sh.c) sh.push_back({c.r, c.g, c.b});
+  const PrefilterOptions po;
+  return json{{"name", name}, {"file", file.string()}, {"size", size}, {"specular_size", size},
+              {"gloss_scale", po.gloss_scale}, {"gloss_bias", po.gloss_bias}, {"exponents", baked->specular.exponents},
+              {"sh", sh}, {"width", width}, {"height", height}, {"blocks", block_list},
+              {"texels", shaders::base64(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float))}};
+}
+
+}  // namespace
+
+Result<SiteReport> write_site(const fs::path& dir, const SiteOptions& options) {
+  if (options.env_size < 1 || options.env_size > 256 || (options.env_size & (options.env_size - 1)) != 0) {
+    return make_error("--env-size: " + std::to_string(options.env_size) + " is not a power of two in [1, 256]");
+  }
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) return make_error("--out: cannot create '" + dir.string() + "': " + ec.message());
-  std::vector<fs::path> written;
+  SiteReport report;
   for (const Asset& a : embedded_assets()) {
     const fs::path path = dir / std::string(a.name);
     auto r = write_file_atomically(path, std::vector<char>(a.bytes.begin(), a.bytes.end()));
     if (!r) return r.error();
-    written.push_back(path);
+    report.written.push_back(path);
   }
-  return written;
+  // The sphere's environments: every NAME.exr of env_dir, baked as `render --mode game` bakes a scene's.
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::pair<std::string, fs::path>> maps;
+  if (!fs::is_directory(options.env_dir, ec)) {
+    report.env_message = "no HDRI: '" + options.env_dir.string() +
+                         "' is not a folder (Debian's blender-data installs the HDRIs there: apt-get install blender-data)";
+  } else {
+    for (const auto& entry : fs::directory_iterator(options.env_dir, ec)) {
+      const fs::path& p = entry.path();
+      if (p.extension() != ".exr" || !entry.is_regular_file(ec)) continue;
+      if (valid_env_name(p.stem().string())) maps.emplace_back(p.stem().string(), p);
+    }
+    std::sort(maps.begin(), maps.end());
+  }
+  for (const auto& [name, file] : maps) {
+    auto baked = bake_environment(name, file, options.env_size);
+    if (!baked) {
+      report.env_problems.push_back(name + ": " + baked.error().message);
+      continue;
+    }
+    const fs::path path = dir / ("env-" + name + ".js");
+    auto r = write_file_atomically(path, js_assignment("(window.shadelabEnvironmentData = window.shadelabEnvironmentData || {})[" +
+                                                           json(name).dump() + "]", *baked));
+    if (!r) return r.error();
+    report.written.push_back(path);
+    report.environments.push_back(name);
+  }
+  if (report.environments.empty() && report.env_message.empty()) {
+    report.env_message = "no HDRI: no lat-long .exr map could be baked in '" + options.env_dir.string() + "'";
+  }
+  report.bake_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::string default_env;
+  if (!report.environments.empty()) {
+    const auto& e = report.environments;
+    default_env = std::find(e.begin(), e.end(), options.default_env) != e.end() ? options.default_env : e.front();
+  }
+  const json index = {{"dir", options.env_dir.string()}, {"names", report.environments},
+                      {"default", default_env.empty() ? json(nullptr) : json(default_env)},
+                      {"size", options.env_size}, {"specular_size", options.env_size},
+                      {"message", report.env_message.empty() ? json(nullptr) : json(report.env_message)},
+                      {"problems", report.env_problems}};
+  const fs::path path = dir / "environments.js";
+  auto r = write_file_atomically(path, js_assignment("window.shadelabEnvironments", index));
+  if (!r) return r.error();
+  report.written.push_back(path);
+  return report;
 }
 
 std::string_view content_type(std::string_view name) {

@@ -5,9 +5,20 @@
 // Contract:
 // - embedded_assets(): every file of the site by name (index.html first is not implied; names are plain
 //   file names without folders).
-// - write_site(dir): creates dir (and parents) and writes every asset into it, each file atomically (a
-//   temporary file renamed over the target, image/image_io.h); returns the paths written. An existing file
-//   of the same name is replaced; other files in dir are left alone.
+// - write_site(dir, options): creates dir (and parents) and writes every asset into it, each file atomically
+//   (a temporary file renamed over the target, image/image_io.h), and the sphere's environments: every
+//   lat-long map NAME.exr of options.env_dir (NAME of [a-z0-9_-], sorted) baked by the game renderer's own
+//   bake (render/game_renderer.h bake_game_environment: the radiance cube point-sampled at options.env_size,
+//   its SH9 and the prefiltered specular chain of options.env_size) into env-NAME.js, and environments.js,
+//   the list (names, the default, the sizes, and a message when there are none: the folder missing, as
+//   without Debian's blender-data, or no map in it; a map that fails to read or bake is skipped and named in
+//   `problems`). Returns the paths written, the names baked, the message and the bake's seconds. An existing
+//   file of the same name is replaced; other files in dir are left alone. A missing folder is not an error.
+//   env-NAME.js sets window.shadelabEnvironmentData[NAME] to {name, file, size, specular_size, gloss_scale,
+//   gloss_bias, exponents, sh (9 x [r, g, b], radiance units), width, height, blocks ([{size, row}]: block 0
+//   the radiance cube, block 1 + i the chain's level i; face f of a block is the rows row + f size .. row +
+//   (f + 1) size - 1, its texels the first size columns), texels (base64 of width x height RGB float32,
+//   little-endian, row-major, unused texels 0)}; environments.js sets window.shadelabEnvironments.
 // - serve_site(dir, port, on_ready): listens on 127.0.0.1:port (0 picks a free port), calls on_ready(port)
 //   once listening, then answers GET and HEAD requests for the files directly in dir ("/" is index.html)
 //   until the process ends; other paths get 404, other methods 405. Returns an Error when the port cannot be
@@ -17,6 +28,7 @@
 #include <filesystem>
 #include <functional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -31,7 +43,21 @@ struct Asset {
 
 std::span<const Asset> embedded_assets();
 
-Result<std::vector<std::filesystem::path>> write_site(const std::filesystem::path& dir);
+struct SiteOptions {
+  std::filesystem::path env_dir = "/usr/share/blender/datafiles/studiolights/world";  // Debian's blender-data
+  int env_size = 32;                  // face size of the baked cubes (a power of two)
+  std::string default_env = "forest";  // the page's default map (the first name when absent)
+};
+
+struct SiteReport {
+  std::vector<std::filesystem::path> written;
+  std::vector<std::string> environments;  // the maps baked
+  std::string env_message;                // why there are none (empty when there are)
+  std::vector<std::string> env_problems;  // maps skipped, one line each
+  double bake_seconds = 0.0;
+};
+
+Result<SiteReport> write_site(const std::filesystem::path& dir, const SiteOptions& options = {});
 
 Result<bool> serve_site(const std::filesystem::path& dir, int port, const std::function<void(int)>& on_ready);
 

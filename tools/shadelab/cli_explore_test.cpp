@@ -39,6 +39,67 @@ TEST(CliExplore, WritesTheSite) {
   EXPECT_NE(wasm.find("data:application/octet-stream;base64,"), std::string::npos);
 }
 
+// The HDRIs: every blender-data map baked into env-NAME.js, listed in environments.js with the default; the
+// folder missing (no blender-data) is no error: the list says why there are none.
+TEST(CliExplore, BakesTheHdris) {
+  const std::filesystem::path world = "/usr/share/blender/datafiles/studiolights/world";
+  if (!std::filesystem::is_directory(world)) GTEST_SKIP() << "Debian's blender-data is not installed";
+  const auto dir = process_temp_dir("explore_hdri") / "site";
+  const CliRun r = run("explore --out " + dir.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("baked 8 HDRIs"), std::string::npos) << r.out;
+  for (const char* name : {"city", "courtyard", "forest", "interior", "night", "studio", "sunrise", "sunset"}) {
+    const std::string js = read_all(dir / (std::string("env-") + name + ".js"));
+    EXPECT_NE(js.find(std::string("[\"") + name + "\"] = {"), std::string::npos) << name;
+    EXPECT_NE(js.find("\"texels\":\""), std::string::npos) << name;
+    EXPECT_NE(js.find("\"file\":\"" + (world / (std::string(name) + ".exr")).string() + "\""), std::string::npos) << name;
+    // 32^2 faces: the radiance cube and 6 prefiltered levels (32 .. 1), 6 x (32 + 63) rows of 32 RGB float32.
+    EXPECT_NE(js.find("\"height\":570"), std::string::npos) << name;
+  }
+  const std::string index = read_all(dir / "environments.js");
+  EXPECT_NE(index.find("\"default\":\"forest\""), std::string::npos) << index;
+  EXPECT_NE(index.find("\"message\":null"), std::string::npos) << index;
+}
+
+TEST(CliExplore, NoHdriFolderIsNoError) {
+  const auto dir = process_temp_dir("explore_no_hdri") / "site";
+  const auto missing = process_temp_dir("explore_no_hdri") / "no-such-folder";
+  const CliRun r = run("explore --out " + dir.string() + " --env-dir " + missing.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("no HDRI"), std::string::npos) << r.err;
+  const std::string index = read_all(dir / "environments.js");
+  EXPECT_NE(index.find("\"names\":[]"), std::string::npos) << index;
+  EXPECT_NE(index.find("blender-data"), std::string::npos) << index;
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "index.html"));
+  // A map that cannot be read is skipped and named.
+  const auto bad = process_temp_dir("explore_bad_hdri");
+  std::ofstream(bad / "broken.exr") << "not an exr";
+  const CliRun b = run("explore --out " + (bad / "site").string() + " --env-dir " + bad.string());
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_NE(b.err.find("HDRI skipped: broken"), std::string::npos) << b.err;
+  EXPECT_NE(read_all(bad / "site" / "environments.js").find("broken"), std::string::npos);
+  const CliRun size = run("explore --out " + (bad / "site2").string() + " --env-size 24");
+  EXPECT_EQ(size.code, 2);
+  EXPECT_NE(size.err.find("--env-size"), std::string::npos) << size.err;
+}
+
+// The renderer's bake sizes, which the explorer's sphere test renders with.
+TEST(CliExplore, RenderBakeSizeFlags) {
+  const auto dir = process_temp_dir("explore_render");
+  const auto scene = dir / "s.json";  // a small scene: the built-in one loads slowly
+  std::ofstream(scene) << R"({"materials": {"m": {"model": "lambert"}},
+                             "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})";
+  const CliRun a = run("render " + scene.string() + " --env-size 32 --out " + (dir / "a.exr").string());
+  EXPECT_EQ(a.code, 2);
+  EXPECT_NE(a.err.find("--env-size"), std::string::npos) << a.err;
+  const CliRun b = run("render " + scene.string() + " --mode game --specular-size 48 --out " + (dir / "b.exr").string());
+  EXPECT_EQ(b.code, 2);
+  EXPECT_NE(b.err.find("--specular-size"), std::string::npos) << b.err;
+  const CliRun c = run("render " + scene.string() + " --mode game --env-size 0 --out " + (dir / "c.exr").string());
+  EXPECT_EQ(c.code, 2);
+  EXPECT_NE(c.err.find("--env-size"), std::string::npos) << c.err;
+}
+
 TEST(CliExplore, FlagErrors) {
   const CliRun r = run("explore --out " + (process_temp_dir("explore_flags") / "s").string() + " --port 9000");
   EXPECT_EQ(r.code, 2);

@@ -72,6 +72,9 @@ struct RenderCliOptions {
   bool no_specular_ambient = false;
   bool drop_pi = false;
   bool sh_lights = false;
+  int env_size = 64;       // game mode: face size the environment is baked at (GameOptions::environment_size)
+  int specular_size = 64;  // game mode: face size of the prefiltered cube's level 0
+  bool env_size_given = false, specular_size_given = false;
   bool json = false;
   bool progress = false;
   std::string shard;  // "I/N": render one part for `shadelab merge` (docs/scale-out.md)
@@ -210,6 +213,15 @@ void run_render(const RenderCliOptions& o) {
     }
     if (o.sh_lights && o.mode != "game") throw UsageError("--sh-lights applies to --mode game");
   }
+  if ((o.env_size_given || o.specular_size_given) && o.mode != "game") {
+    throw UsageError(std::string(o.env_size_given ? "--env-size" : "--specular-size") + " applies to --mode game");
+  }
+  if (o.env_size < 1 || o.env_size > 1024) throw UsageError(fmt::format("--env-size: {} is out of range [1, 1024]", o.env_size));
+  if (o.specular_size < 1 || o.specular_size > 1024 || (o.specular_size & (o.specular_size - 1)) != 0) {
+    throw UsageError(fmt::format("--specular-size: {} is not a power of two in [1, 1024]", o.specular_size));
+  }
+  go.environment_size = o.env_size;
+  go.specular_size = o.specular_size;
   go.threads = ro.threads;
   if (o.spp_given) go.spp = o.spp;
   if (!o.shard.empty() || o.split_given) {
@@ -309,6 +321,9 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_flag("--drop-pi", o->drop_pi, "game mode, debug: forget the pi of the game light unit");
   sub->add_flag("--sh-lights", o->sh_lights,
                 "game mode: add every directional light to the SH9 ambient (D3DX-style) instead of shading it per pixel");
+  sub->add_option("--env-size", o->env_size, "game mode: face size the environment is baked at (SH9 and the cube)")->capture_default_str();
+  sub->add_option("--specular-size", o->specular_size, "game mode: face size of the prefiltered specular cube's level 0 (a power of two)")
+      ->capture_default_str();
   sub->add_flag("--json", o->json, "machine-readable summary");
   sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");
   sub->add_option("--shard", o->shard, "I/N: render part I of N (0 <= I < N) into --out, for shadelab merge (docs/scale-out.md)");
@@ -320,6 +335,8 @@ void add_render_command(CLI::App& app, Command& command) {
     o->max_depth_given = sub->count("--max-depth") > 0;
     o->seed_given = sub->count("--seed") > 0;
     o->split_given = sub->count("--split") > 0;
+    o->env_size_given = sub->count("--env-size") > 0;
+    o->specular_size_given = sub->count("--specular-size") > 0;
     command.run = [o] { run_render(*o); };
   });
 }

@@ -11,8 +11,8 @@
 namespace shadelab::shaders {
 
 namespace {
-
 constexpr int kWidth = 1024;  // render-target width; the height is ceil(cases / kWidth)
+}  // namespace
 
 std::string base64(const std::uint8_t* data, std::size_t n) {
   static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -30,6 +30,8 @@ std::string base64(const std::uint8_t* data, std::size_t n) {
   }
   return out;
 }
+
+namespace {
 
 Result<std::vector<std::uint8_t>> unbase64(const std::string& s) {
   std::vector<std::uint8_t> out;

@@ -18,6 +18,9 @@ struct WebglResult {
   std::vector<float> output;  // 4 floats per case
 };
 
+// RFC 4648 base64 (with '=' padding) of n bytes; the explorer embeds its baked environments with it.
+std::string base64(const std::uint8_t* data, std::size_t n);
+
 // $SHADELAB_CHROMIUM, else chromium (or chromium-browser) on PATH; empty if none.
 std::string chromium_program();
 

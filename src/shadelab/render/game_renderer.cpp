@@ -212,6 +212,7 @@ Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const
     if (!chain) return chain.error();
     out.specular = std::move(chain).value();
   }
+  out.radiance = std::move(cube);
   return out;
 }
 

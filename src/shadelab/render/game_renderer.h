@@ -53,13 +53,14 @@ struct GameOptions {
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options = {});
 
 // The environment as game shading bakes it: the radiance without the sky's sun (env_light.h), point-sampled
-// at the texel centres of a cube of options.environment_size; its SH9 projection (radiance units: evaluate
+// at the texel centres of a cube of options.environment_size (kept as radiance); its SH9 projection (radiance units: evaluate
 // with sh9_irradiance_game for E/pi); the irradiance cube in game units (GameAmbient::irradiance_map only);
 // and the prefiltered specular chain of options.specular_size (options.specular_ambient only). has_light is
 // false, and the rest empty, for a scene with neither an environment nor hemisphere lights. The browser
 // explorer (web/) bakes its HDRIs with it, so its sphere is lit by exactly what `render --mode game` uses.
 struct GameEnvironment {
   bool has_light = false;
+  CubeMap radiance;  // the point-sampled cube of options.environment_size that the rest is baked from
   Sh9 sh;
   CubeMap irradiance;
   PrefilteredCube specular;

@@ -33,6 +33,33 @@ struct View {
 };
 const View views[] = {{{-1.0, 1.2, 1.5}, normalize(Vec3{1.0, -1.2, -1.5})}, {{2.0, 0.5, 0.0}, normalize(Vec3{-2.0, -0.5, 0.3})}};
 
+// The bake the explorer embeds (tools/explore/site.cpp): a constant environment of 0.5 comes back as 0.5 in
+// game units everywhere (the seeds' oracle): every texel of the radiance cube, E/pi of the SH9 at any normal,
+// and every level of the prefiltered chain; the sizes are the options', and no environment bakes nothing.
+TEST(GameRenderer, BakeGameEnvironmentOfAConstantIsTheConstant) {
+  Scene s;
+  s.environment.kind = Environment::Kind::uniform;
+  s.environment.uniform = Rgb::gray(0.5);
+  GameOptions o;
+  o.environment_size = 8;
+  o.specular_size = 4;
+  auto baked = bake_game_environment(s, o);
+  ASSERT_TRUE(baked) << baked.error().message;
+  ASSERT_TRUE(baked->has_light);
+  ASSERT_EQ(baked->radiance.size, 8);
+  for (int f = 0; f < 6; ++f)
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) EXPECT_EQ(baked->radiance.texel(f, x, y).g, 0.5f);
+  for (const Vec3 n : {Vec3{0, 0, 1}, normalize(Vec3{1, -2, 0.5})}) EXPECT_NEAR(sh9_evaluate(baked->sh, n, cosine_band_factors_over_pi).r, 0.5, 1e-6);
+  ASSERT_EQ(baked->specular.levels.size(), 3u);  // 4, 2, 1
+  EXPECT_EQ(baked->specular.levels[0].size, 4);
+  for (const CubeMap& level : baked->specular.levels) EXPECT_NEAR(level.sample(normalize(Vec3{0.3, 0.4, -1})).b, 0.5, 1e-6);
+  const auto none = bake_game_environment(Scene{}, o);
+  ASSERT_TRUE(none);
+  EXPECT_FALSE(none->has_light);
+  EXPECT_EQ(none->radiance.size, 0);
+}
+
 TEST(GameRenderer, DirectPunctualLightAgreesWithTheReferenceForEveryModel) {
   // Direct light only: the game shading equation pi f c cos with c = E/pi is the radiometric f E cos, so the
   // game image and the path tracer (depth 1) agree within the reference's noise (which comes only from

@@ -99,6 +99,32 @@ test('albedo and probed f_r in the DOM equal the CLI to 1e-12', async () => {
   zoo.rows.forEach((r, i) => relClose([s.zoo.rows[i].numeric, s.zoo.rows[i].closed_form_value], [r.numeric, r.closed_form_value], `zoo ${r.model}`));
 });
 
+// Several models at once: the overlaid models' albedo curves are the CLI's, their lobes the library's (the
+// same numbers as the model opened on its own), and the button adds the current model to the URL.
+test('several models overlaid: their albedo and lobe are the library\'s', async () => {
+  const s = await open('?model=phong&n=100&kd=0&ks=1&overlay=lambert:kd=0.5;cook-torrance:m=0.2:f0=1,0.78,0.34');
+  assert.deepEqual(s.errors, []);
+  assert.equal(new URL(page.url()).searchParams.get('overlay'), 'lambert:kd=0.5;cook-torrance:m=0.2:f0=1,0.78,0.34');
+  assert.deepEqual(s.overlays.map((o) => o.model), ['lambert', 'cook-torrance']);
+  for (const o of s.overlays) {
+    const p = Object.entries(o.params).flatMap(([k, v]) => ['-p', `${k}=${v}`]);
+    const albedo = cliJson(['brdf', 'albedo', o.model, ...p, '--json', '--theta', ...o.albedo_curve.theta.map(String)]);
+    albedo.albedo.forEach((a, i) => relClose(o.albedo_curve.albedo[i], a, `overlay ${o.model} albedo at ${albedo.theta[i]}`));
+  }
+  const alone = await open('?model=cook-torrance&m=0.2&f0=1,0.78,0.34');
+  assert.deepEqual(alone.lobe.luminance, s.overlays[1].lobe.luminance);
+  const before = await page.evaluate(() => document.body.dataset.ready);
+  await page.click('#shadelab-overlay-add');
+  await page.waitForFunction((b) => document.body.dataset.ready !== b, before);
+  const added = JSON.parse(await page.locator('#shadelab-state').textContent());
+  assert.equal(added.view.overlay, 'cook-torrance:m=0.2:f0=1,0.78,0.34');
+  assert.deepEqual(added.overlays[0].albedo_curve, alone.albedo_curve);
+  if (shots) {
+    await open('?model=phong&n=100&kd=0&ks=1&scale=log&overlay=blinn-phong-modified:n=400:kd=0;cook-torrance:kd=0:m=0.2');
+    await page.locator('#views').screenshot({ path: path.join(shots, 'explorer-overlay.png') });
+  }
+});
+
 test('the exported shader of the export button is the CLI export', async () => {
   await open(query(CASES[0]));
   await page.selectOption('#shadelab-export-lang', 'hlsl');
@@ -134,7 +160,9 @@ test('the URL state round-trips', async () => {
 
 test('a bad URL parameter shows a message naming it and the page still draws', async () => {
   for (const [q, name] of [['?model=phong&n=-1', "'n'"], ['?model=no-such-model', "'model'"], ['?model=phong&colour=1', "'colour'"],
-                           ['?model=phong&theta=0,95', "'theta'"], ['?model=phong&wi=1,2', "'wi'"], ['?model=lambert&kd=abc', "'kd'"]]) {
+                           ['?model=phong&theta=0,95', "'theta'"], ['?model=phong&wi=1,2', "'wi'"], ['?model=lambert&kd=abc', "'kd'"],
+                           ['?model=phong&lighting=sun', "'lighting'"], ['?model=phong&lighting=hdri&env=nosuch', "'env'"],
+                           ['?model=phong&overlay=nosuch', "'overlay'"], ['?model=phong&overlay=lambert:kd=-1', "'overlay'"]]) {
     const s = await open(q);
     const box = page.locator('#shadelab-error');
     assert.ok(await box.isVisible(), q);
@@ -156,13 +184,55 @@ function sceneFor(s) {
   const params = Object.fromEntries(Object.entries(s.params).map(([k, v]) => [k, value(v)]));
   const sp = s.sphere;
   const colour = sp.light.length === 1 ? [sp.light[0], sp.light[0], sp.light[0]] : sp.light;
-  return {
+  const scene = {
     units: sp.units,
     camera: { position: sp.camera.position, look_at: sp.camera.look_at, up: sp.camera.up, fov: sp.camera.fov, width: sp.width, height: sp.height },
     materials: { m: { model: s.model, params } },
     shapes: [{ type: 'sphere', center: sp.center, radius: sp.radius, material: 'm' }],
-    lights: [{ type: 'point', position: sp.light_position, color: colour, intensity: 1 }],
+    lights: sp.lighting === 'hdri' ? [] : [{ type: 'point', position: sp.light_position, color: colour, intensity: 1 }],
   };
+  if (sp.lighting !== 'point') scene.environment = { file: sp.env_file };
+  return scene;
+}
+
+// The pixels all of whose sub-pixel rays hit the sphere (the renderer's camera rays; render/game_renderer.cpp).
+function spherePixels(sp) {
+  const sub = (a, b) => a.map((x, i) => x - b[i]);
+  const unit = (a) => { const l = Math.hypot(...a); return a.map((x) => x / l); };
+  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  const cam = sp.camera, w = sp.width, h = sp.height, side = Math.round(Math.sqrt(sp.spp));
+  const forward = unit(sub(cam.look_at, cam.position)), right = unit(cross(forward, cam.up)), up = cross(right, forward);
+  const tanHalf = Math.tan(0.5 * cam.fov * Math.PI / 180);
+  const eye = sub(cam.position, sp.center);
+  const inside = [];
+  for (let y = 0; y < h; ++y) {
+    for (let x = 0; x < w; ++x) {
+      let all = true;
+      for (let j = 0; j < side && all; ++j) {
+        for (let i = 0; i < side && all; ++i) {
+          const sx = (2 * (x + (i + 0.5) / side) / w - 1) * tanHalf * (w / h), sy = (1 - 2 * (y + (j + 0.5) / side) / h) * tanHalf;
+          const d = unit(forward.map((f, k) => f + right[k] * sx + up[k] * sy));
+          const b = eye.reduce((acc, e, k) => acc + e * d[k], 0), c = eye.reduce((acc, e) => acc + e * e, 0) - sp.radius * sp.radius;
+          all = b * b - c > 0 && -b - Math.sqrt(b * b - c) > 0;
+        }
+      }
+      if (all) inside.push(y * w + x);
+    }
+  }
+  return inside;
+}
+
+// Renders the page's sphere state with `shadelab render --mode game` and returns its 8-bit pixels.
+async function renderReference(s, name) {
+  const scene = path.join(work, `${name}.json`);
+  fs.writeFileSync(scene, JSON.stringify(sceneFor(s)));
+  const exr = path.join(work, `${name}.exr`), png = path.join(work, `${name}.png`);
+  const args = ['render', scene, '--mode', 'game', '--spp', String(s.sphere.spp), '--out', exr, '--png', png,
+                '--exposure', String(s.sphere.exposure)];
+  if (s.sphere.tone === 'filmic') args.push('--filmic');
+  if (s.sphere.lighting !== 'point') args.push('--env-size', String(s.sphere.env_size), '--specular-size', String(s.sphere.specular_size));
+  cli(args);
+  return pngPixels(png);
 }
 
 async function pngPixels(file) {
@@ -184,19 +254,13 @@ test('the WebGL 2 sphere matches the C++ game renderer within 1/255 mean absolut
     '?model=blinn-phong-modified&n=300&kd=0.1,0.35,0.12&ks=0.2&units=game&light=2&light_pos=2,2,3',
     '?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&units=radiometric&light=20&light_pos=-2,3,4&exposure=-1',
     '?model=lambert&kd=0.8&units=game&light=1&light_pos=0,0,5&tone=filmic&exposure=1',
+    '?model=ggx&units=game&light=2&light_pos=2,2,3',
   ];
   for (const [i, q] of views.entries()) {
     const s = await open(q);
     assert.deepEqual(s.errors, [], q);
     const shown = await page.evaluate(() => window.shadelabSpherePixels());
-    const scene = path.join(work, `sphere${i}.json`);
-    fs.writeFileSync(scene, JSON.stringify(sceneFor(s)));
-    const exr = path.join(work, `sphere${i}.exr`), png = path.join(work, `sphere${i}.png`);
-    const args = ['render', scene, '--mode', 'game', '--spp', String(s.sphere.spp), '--out', exr, '--png', png,
-                  '--exposure', String(s.sphere.exposure)];
-    if (s.sphere.tone === 'filmic') args.push('--filmic');
-    cli(args);
-    const ref = await pngPixels(png);
+    const ref = await renderReference(s, `sphere${i}`);
     assert.equal(ref.length, shown.rgba.length);
     let sum = 0, lit = 0, max = 0;
     for (let k = 0; k < ref.length; ++k) {
@@ -212,10 +276,69 @@ test('the WebGL 2 sphere matches the C++ game renderer within 1/255 mean absolut
   }
 });
 
+// The HDRI sphere: SH9 diffuse and prefiltered specular of a blender-data map baked by `shadelab explore` with
+// the renderer's own bake, shaded by the page's GLSL (the kernels of game_ambient.sl and sh9.sl, the cube lookup,
+// the level choice), against `render --mode game` of the same scene at the same bake sizes. Compared over the
+// sphere's pixels: behind it the page shows the baked 32^2 radiance cube, the renderer the full map.
+const HDRI_VIEWS = [
+  '?model=blinn-phong-modified&n=300&kd=0.1,0.35,0.12&ks=0.2&lighting=hdri&env=forest',
+  '?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&lighting=both&env=studio&light=2&exposure=-0.5',
+  '?model=phong&kd=0.2&ks=0.8&n=1000&lighting=hdri&env=city&exposure=1',
+  '?model=wrapped-diffuse&kd=0.7,0.5,0.3&w=0.5&lighting=hdri&env=sunset&tone=filmic&exposure=1',
+  '?model=ggx&lighting=hdri&env=courtyard',
+];
+
+test('the HDRI-lit sphere matches the C++ game renderer within 1/255 mean absolute difference', async (t) => {
+  const first = await open('?model=phong');
+  if (first.sphere.environments.length === 0) { t.skip(`no HDRI on this machine: ${first.sphere.env_message}`); return; }
+  assert.equal(first.sphere.environments.length, 8, first.sphere.environments.join(','));
+  for (const [i, q] of HDRI_VIEWS.entries()) {
+    const s = await open(q);
+    assert.deepEqual(s.errors, [], q);
+    assert.equal(s.sphere.env, new URLSearchParams(q).get('env'));
+    assert.ok(s.sphere.env_file.endsWith(`${s.sphere.env}.exr`), s.sphere.env_file);
+    const shown = await page.evaluate(() => window.shadelabSpherePixels());
+    const ref = await renderReference(s, `hdri${i}`);
+    assert.equal(ref.length, shown.rgba.length);
+    const inside = spherePixels(s.sphere);
+    let sum = 0, max = 0, lit = 0;
+    for (const p of inside) {
+      for (let k = 0; k < 3; ++k) {
+        const d = Math.abs(ref[4 * p + k] - shown.rgba[4 * p + k]);
+        sum += d; max = Math.max(max, d);
+        if (shown.rgba[4 * p + k] > 0) ++lit;
+      }
+    }
+    const mean = sum / (inside.length * 3);
+    console.log(`hdri ${s.model} (${s.sphere.lighting}, ${s.sphere.env}): mean |difference| ${mean.toFixed(4)} / 255 over ${inside.length} sphere pixels, max ${max}`);
+    assert.ok(inside.length > 3000, `${inside.length} sphere pixels`);
+    assert.ok(lit > inside.length * 2, `${q}: the sphere is black`);
+    assert.ok(mean <= 1.0, `${q}: mean absolute difference ${mean} / 255`);
+    if (shots && i === 1) await page.locator('#shadelab-sphere').screenshot({ path: path.join(shots, 'explorer-hdri.png') });
+  }
+});
+
+test('without blender-data the page says so and keeps the point light', async () => {
+  const empty = path.join(work, 'no-hdri');
+  fs.mkdirSync(empty);
+  const other = path.join(work, 'site-no-hdri');
+  cli(['explore', '--out', other, '--env-dir', empty]);
+  await page.goto(pathToFileURL(path.join(other, 'index.html')).href + '?model=phong&lighting=hdri');
+  await page.waitForFunction(() => document.body.dataset.ready, null, { timeout: 60000 });
+  const s = JSON.parse(await page.locator('#shadelab-state').textContent());
+  assert.deepEqual(s.sphere.environments, []);
+  assert.match(s.sphere.env_message, /no HDRI/);
+  assert.equal(s.sphere.lighting, 'point');
+  assert.ok((await page.locator('#shadelab-error').textContent()).includes("'lighting'"));
+  assert.match(await page.locator('#shadelab-env-status').textContent(), /no HDRI/);
+  const shown = await page.evaluate(() => window.shadelabSpherePixels());
+  assert.ok(shown.rgba.some((v, k) => k % 4 !== 3 && v > 0), 'the point-lit sphere is drawn');
+});
+
 test('no console error on any page load', async () => {
   if (shots) {
     fs.mkdirSync(shots, { recursive: true });
-    await open('?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&units=game&light=2&light_pos=2,2,3&scale=log');
+    await open('?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&units=game&light=2&light_pos=2,2,3&scale=log&lighting=both&env=studio');
     await page.screenshot({ path: path.join(shots, 'explorer.png'), fullPage: true });
     await open('?model=phong&n=-1');
     await page.locator('#shadelab-error').screenshot({ path: path.join(shots, 'explorer-error.png') });

@@ -11,7 +11,8 @@
 //                                                             the in-plane lobe of `plot lobe` (plot_data.h)
 //   {"op": "lobe3d", model, params, "wi": [x,y,z], "n_theta", "n_phi"}  f_r luminance over the hemisphere
 //   {"op": "zoo", "n"}                                        the zoo table rows, as `zoo --json` has them
-//   {"op": "shader", model, params, "lang"}                   the text of `shader MODEL --param ... --lang`
+//   {"op": "shader", model, params, "lang"}                   the text of `shader MODEL --param ... --lang`,
+//                                                             and the GGX tables' block name and bytes (or "", [])
 //   {"op": "game_lobe", model, params}                        brdf/game_lobe.h's numbers for the sphere
 //   {"op": "kernels", "names": [...], "lang"}                 the translated kernel files defining the names
 // Every answer is {"error": "one line"} on bad input. Directions are normalized as the CLI does.
@@ -207,7 +208,11 @@ json shader(const json& req) {
   e.command += " --lang " + lang;
   auto ex = shaders::export_model(m.name, params, e);
   if (!ex) throw BadRequest{ex.error().message};
-  return {{"text", ex->text}, {"entry", ex->entry}};
+  // A model that reads the GGX energy tables declares their uniform block: its name and std140 bytes (as
+  // `shadelab shader --tables-out` writes them), which the page binds for the sphere.
+  json tables = json::array();
+  for (std::uint8_t b : ex->tables_data) tables.push_back(b);
+  return {{"text", ex->text}, {"entry", ex->entry}, {"tables_block", ex->tables_block}, {"tables", tables}};
 }
 
 json game_lobe_json(const json& req) {

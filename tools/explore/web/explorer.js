@@ -7,6 +7,9 @@
   const $ = (id) => document.getElementById(id);
   let lib = null;
   let models = [];
+  // The HDRIs `shadelab explore` baked with the game renderer's bake (environments.js, env-NAME.js; site.h).
+  const ENVIRONMENTS = window.shadelabEnvironments ||
+    { names: [], default: null, size: 0, specular_size: 0, message: 'no HDRI: environments.js did not load', problems: [] };
 
   // Query keys that are not model parameters, with their defaults (strings, as in the URL).
   const VIEW_DEFAULTS = {
@@ -22,7 +25,12 @@
     light: '1',
     exposure: '0',
     tone: 'clamp',
+    lighting: 'point',
+    env: ENVIRONMENTS.default || 'forest',
+    overlay: '',
   };
+  // Overlaid models, drawn over the lobe and albedo views in these colours (the first model keeps its own).
+  const OVERLAY_COLOURS = ['#6a1b9a', '#00838f', '#ef6c00', '#5d4037', '#ad1457', '#558b2f'];
   const DEFAULT_MODEL = 'blinn-phong-modified';
   // The sphere's view: the C++ game renderer's pinhole camera (render/game_renderer.cpp) with these values;
   // the tests render the same scene with `shadelab render --mode game` (docs/explorer.md).
@@ -116,6 +124,16 @@
       cos: () => { if (!['0', '1'].includes(view.cos)) throw new Error(`URL parameter 'cos': '${view.cos}' is not 0 or 1`); },
       units: () => { if (!['game', 'radiometric'].includes(view.units)) throw new Error(`URL parameter 'units': '${view.units}' is not game or radiometric`); },
       tone: () => { if (!['clamp', 'filmic'].includes(view.tone)) throw new Error(`URL parameter 'tone': '${view.tone}' is not clamp or filmic`); },
+      lighting: () => {
+        if (!['point', 'hdri', 'both'].includes(view.lighting)) throw new Error(`URL parameter 'lighting': '${view.lighting}' is not point, hdri or both`);
+        if (view.lighting !== 'point' && ENVIRONMENTS.names.length === 0) throw new Error(`URL parameter 'lighting': ${ENVIRONMENTS.message}`);
+      },
+      overlay: () => parseOverlay(view.overlay),
+      env: () => {
+        if (ENVIRONMENTS.names.length > 0 && !ENVIRONMENTS.names.includes(view.env)) {
+          throw new Error(`URL parameter 'env': unknown HDRI '${view.env}' (HDRIs: ${ENVIRONMENTS.names.join(', ')})`);
+        }
+      },
     };
     for (const [key, check] of Object.entries(checks)) {
       try { check(); } catch (e) { problems.push(e.message); view[key] = VIEW_DEFAULTS[key]; }
@@ -123,12 +141,38 @@
     return { state: { model, params, view }, problems };
   }
 
+  // `overlay`: models drawn over the first, SPEC;SPEC with SPEC = model[:name=value]... (values as in the URL,
+  // e.g. lambert:kd=0.5;cook-torrance:m=0.2:f0=1,0.78,0.34). Each through the library's own validation;
+  // throws naming the URL parameter.
+  function parseOverlay(text) {
+    if (text === '') return [];
+    const specs = String(text).split(';');
+    if (specs.length > OVERLAY_COLOURS.length) throw new Error(`URL parameter 'overlay': at most ${OVERLAY_COLOURS.length} models`);
+    return specs.map((spec) => {
+      const [model, ...assignments] = spec.split(':');
+      if (!modelInfo(model)) throw new Error(`URL parameter 'overlay': unknown model '${model}' (models: ${models.map((m) => m.name).join(', ')})`);
+      const params = {};
+      for (const a of assignments) {
+        const eq = a.indexOf('=');
+        if (eq <= 0) throw new Error(`URL parameter 'overlay': '${a}' in '${spec}' is not name=value`);
+        params[a.slice(0, eq)] = a.slice(eq + 1);
+      }
+      const probe = call({ op: 'eval', model, params, wi: [0, 0, 1], wo: [0, 0, 1] });
+      if (probe.error) throw new Error(`URL parameter 'overlay': ${spec}: ${probe.error}`);
+      return { model, params };
+    });
+  }
+
+  function overlaySpec(model, params) {
+    return [model, ...Object.entries(params).map(([k, v]) => `${k}=${v}`)].join(':');
+  }
+
   function queryFromState(s) {
     const q = new URLSearchParams();
     q.set('model', s.model);
     for (const [k, v] of Object.entries(s.params)) q.set(k, v);
     for (const [k, v] of Object.entries(s.view)) q.set(k, v);
-    return '?' + q.toString().replace(/%2C/g, ',');
+    return '?' + q.toString().replace(/%2C/g, ',').replace(/%3A/g, ':').replace(/%3B/g, ';').replace(/%3D/g, '=');
   }
 
   // ---- controls ---------------------------------------------------------------------------------------
@@ -196,7 +240,8 @@
 
   const VIEW_FIELDS = { theta: 'shadelab-theta', wi: 'shadelab-wi', wo: 'shadelab-wo', theta_in: 'shadelab-theta-in',
                         fixed: 'shadelab-fixed', scale: 'shadelab-scale', units: 'shadelab-units', light_pos: 'shadelab-light-pos',
-                        light: 'shadelab-light', exposure: 'shadelab-exposure', tone: 'shadelab-tone' };
+                        light: 'shadelab-light', exposure: 'shadelab-exposure', tone: 'shadelab-tone',
+                        lighting: 'shadelab-lighting', env: 'shadelab-env', overlay: 'shadelab-overlay' };
 
   function syncViewControls() {
     $('shadelab-model').value = state.model;
@@ -205,6 +250,15 @@
   }
 
   function buildViewControls() {
+    const envSelect = $('shadelab-env');
+    for (const name of ENVIRONMENTS.names) { const o = document.createElement('option'); o.textContent = name; envSelect.appendChild(o); }
+    if (ENVIRONMENTS.names.length === 0) {
+      const o = document.createElement('option'); o.textContent = VIEW_DEFAULTS.env; envSelect.appendChild(o);
+      envSelect.disabled = true;
+    }
+    $('shadelab-env-status').textContent = ENVIRONMENTS.names.length > 0
+      ? `${ENVIRONMENTS.names.length} HDRIs baked by shadelab at ${ENVIRONMENTS.size} x ${ENVIRONMENTS.size} from ${ENVIRONMENTS.dir}`
+      : ENVIRONMENTS.message;
     const select = $('shadelab-model');
     for (const m of models) { const o = document.createElement('option'); o.textContent = m.name; select.appendChild(o); }
     select.addEventListener('change', () => {
@@ -223,6 +277,16 @@
         if (errors.length === 0) { state.view = parsed.state.view; changed(); }
       });
     }
+    $('shadelab-overlay-add').addEventListener('click', () => {
+      const spec = overlaySpec(state.model, state.params);
+      const list = state.view.overlay === '' ? [] : state.view.overlay.split(';');
+      if (list.length >= OVERLAY_COLOURS.length) list.shift();
+      list.push(spec);
+      state.view.overlay = list.join(';');
+      $('shadelab-overlay').value = state.view.overlay;
+      changed();
+    });
+    $('shadelab-overlay-clear').addEventListener('click', () => { state.view.overlay = ''; $('shadelab-overlay').value = ''; changed(); });
     $('shadelab-cos').addEventListener('change', () => { state.view.cos = $('shadelab-cos').checked ? '1' : '0'; changed(); });
     $('shadelab-export').addEventListener('click', () => {
       const lang = $('shadelab-export-lang').value;
@@ -255,14 +319,26 @@
     return v > 0 ? Math.max(0, (Math.log10(v) - lo) / 4) : 0;
   }
 
-  function drawLobe(lobe) {
+  function drawLobe(lobe, overlays) {
     const c = $('shadelab-lobe'); const ctx = c.getContext('2d');
     axes(ctx, c.width, c.height);
     const ox = c.width / 2, oy = c.height - 12, r = Math.min(ox, oy) - 8;
     ctx.beginPath(); ctx.moveTo(8, oy); ctx.lineTo(c.width - 8, oy); ctx.stroke();
     ctx.beginPath(); ctx.arc(ox, oy, r, Math.PI, 0); ctx.stroke();
-    const max = Math.max(...lobe.luminance);
+    const max = Math.max(...lobe.luminance, ...overlays.flatMap((o) => o.lobe.luminance));
     const log = state.view.scale === 'log';
+    overlays.forEach((o, k) => {
+      ctx.strokeStyle = OVERLAY_COLOURS[k]; ctx.lineWidth = 1.5; ctx.beginPath();
+      o.lobe.angle.forEach((a, i) => {
+        const s = r * scaleValue(o.lobe.luminance[i], max, log);
+        const x = ox + s * Math.sin(a * Math.PI / 180), y = oy - s * Math.cos(a * Math.PI / 180);
+        if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+      });
+      ctx.stroke();
+      ctx.fillStyle = OVERLAY_COLOURS[k]; ctx.font = '11px sans-serif';
+      ctx.fillText(o.model, c.width - 150, 14 + 13 * k);
+    });
+    ctx.strokeStyle = '#bbb'; ctx.lineWidth = 1;
     const fixedAngle = -Number(state.view.theta_in) * Math.PI / 180;
     ctx.strokeStyle = '#e65100';
     ctx.beginPath(); ctx.moveTo(ox, oy); ctx.lineTo(ox + r * Math.sin(fixedAngle), oy - r * Math.cos(fixedAngle)); ctx.stroke();
@@ -310,11 +386,27 @@
     }
   }
 
-  function drawAlbedo(curve) {
+  function drawAlbedo(curve, overlays) {
     const c = $('shadelab-albedo'); const ctx = c.getContext('2d');
     axes(ctx, c.width, c.height);
     const x0 = 30, y0 = c.height - 20, w = c.width - 40, h = c.height - 40;
-    const top = Math.max(1.1, ...curve.albedo.flat()) * 1.05;
+    const top = Math.max(1.1, ...curve.albedo.flat(), ...overlays.flatMap((o) => o.albedo_curve.albedo.flat())) * 1.05;
+    // Each overlaid model: its r, g, b curves in its colour, dashed 6/2, 2/2 and 1/1.
+    overlays.forEach((o, m) => {
+      ctx.strokeStyle = OVERLAY_COLOURS[m]; ctx.lineWidth = 1;
+      [[6, 2], [2, 2], [1, 1]].forEach((dash, k) => {
+        ctx.setLineDash(dash); ctx.beginPath();
+        o.albedo_curve.theta.forEach((t, i) => {
+          const x = x0 + w * t / 90, y = y0 - h * o.albedo_curve.albedo[i][k] / top;
+          if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+        });
+        ctx.stroke();
+      });
+      ctx.setLineDash([]);
+      ctx.fillStyle = OVERLAY_COLOURS[m]; ctx.font = '11px sans-serif';
+      ctx.fillText(o.model, x0 + w - 150, 14 + 13 * m);
+    });
+    ctx.strokeStyle = '#bbb';
     ctx.beginPath(); ctx.moveTo(x0, y0 - h); ctx.lineTo(x0, y0); ctx.lineTo(x0 + w, y0); ctx.stroke();
     ctx.setLineDash([4, 3]); ctx.strokeStyle = '#000';
     ctx.beginPath(); ctx.moveTo(x0, y0 - h / top); ctx.lineTo(x0 + w, y0 - h / top); ctx.stroke();
@@ -357,6 +449,44 @@
   // ---- the sphere: the exported GLSL ES in WebGL 2 ------------------------------------------------------
   let gl = null, program = null, programSource = '', sphereError = '';
   let displayKernels = null;
+  const MAX_BLOCKS = 12;
+  let tablesBuffer = null;
+  const envTextures = {};  // name -> WebGL texture
+  const envLoads = {};     // name -> 'loading' | 'loaded' | error message
+
+  // env-NAME.js, by a script element (works from file://); calls done() when it has run or failed.
+  function loadEnvironment(name, done) {
+    const data = window.shadelabEnvironmentData;
+    if (data && data[name]) { envLoads[name] = 'loaded'; done(); return; }
+    if (envLoads[name] === 'loading') return;
+    envLoads[name] = 'loading';
+    const script = document.createElement('script');
+    script.src = `env-${name}.js`;
+    script.onload = () => {
+      const d = window.shadelabEnvironmentData;
+      envLoads[name] = d && d[name] ? 'loaded' : `HDRI '${name}': env-${name}.js has no data`;
+      done();
+    };
+    script.onerror = () => { envLoads[name] = `HDRI '${name}': env-${name}.js did not load`; done(); };
+    document.head.appendChild(script);
+  }
+
+  function environmentTexture(env) {
+    if (envTextures[env.name]) return envTextures[env.name];
+    const bytes = Uint8Array.from(atob(env.texels), (c) => c.charCodeAt(0));
+    const texels = new Float32Array(bytes.buffer);
+    const tex = gl.createTexture();
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, tex);
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGB32F, env.width, env.height, 0, gl.RGB, gl.FLOAT, texels);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+    envTextures[env.name] = tex;
+    return tex;
+  }
 
   const VERTEX = `#version 300 es
 in vec2 p;
@@ -379,16 +509,71 @@ uniform vec3 u_light_pos, u_light;
 uniform int u_units;
 uniform float u_exposure;
 uniform int u_tone;
+uniform int u_point_on, u_env_on;
+// The baked HDRI (env-NAME.js): block 0 the radiance cube, block 1 + i the prefiltered level i, as rows of u_env.
+uniform highp sampler2D u_env;
+uniform int u_block_size[${MAX_BLOCKS}], u_block_row[${MAX_BLOCKS}];
+uniform int u_levels;
+uniform float u_gloss_scale, u_gloss_bias;
+uniform Sh9Coefficients u_sh;
+// The material's game lobe (brdf/game_lobe.h, the module's game_lobe answer).
+uniform GameSpecularAlbedo u_rho_s;
+uniform vec3 u_kd;
+uniform float u_exponent, u_wrap;
 out vec4 o_colour;
 
-// The radiance along a camera ray: the sphere (centre 0, radius ${SPHERE.radius.toFixed(1)}) under the point light, black behind.
+vec3 env_texel(int block, int face, int x, int y) {
+  return texelFetch(u_env, ivec2(x, u_block_row[block] + face * u_block_size[block] + y), 0).rgb;
+}
+
+// A cube map lookup as CubeMap::sample (envmap/cubemap.h: the face of OpenGL table 8.19, ties to X then Y,
+// bilinear between texel centres, clamped at the face's edges); the browser test proves it equal to the C++.
+vec3 cube_sample(int block, vec3 r) {
+  vec3 a = abs(r);
+  int face;
+  float sc, tc, ma;
+  if (a.x >= a.y && a.x >= a.z) {
+    ma = a.x;
+    if (r.x >= 0.0) { face = 0; sc = -r.z; tc = -r.y; } else { face = 1; sc = r.z; tc = -r.y; }
+  } else if (a.y >= a.z) {
+    ma = a.y;
+    if (r.y >= 0.0) { face = 2; sc = r.x; tc = r.z; } else { face = 3; sc = r.x; tc = -r.z; }
+  } else {
+    ma = a.z;
+    if (r.z >= 0.0) { face = 4; sc = r.x; tc = -r.y; } else { face = 5; sc = -r.x; tc = -r.y; }
+  }
+  int size = u_block_size[block];
+  float n = float(size);
+  float fx = clamp(0.5 * (sc / ma + 1.0) * n - 0.5, 0.0, n - 1.0);
+  float fy = clamp(0.5 * (tc / ma + 1.0) * n - 0.5, 0.0, n - 1.0);
+  int x0 = min(int(fx), size - 1), y0 = min(int(fy), size - 1);
+  int x1 = min(x0 + 1, size - 1), y1 = min(y0 + 1, size - 1);
+  float ax = fx - float(x0), ay = fy - float(y0);
+  return (env_texel(block, face, x0, y0) * (1.0 - ax) + env_texel(block, face, x1, y0) * ax) * (1.0 - ay) +
+         (env_texel(block, face, x0, y1) * (1.0 - ax) + env_texel(block, face, x1, y1) * ax) * ay;
+}
+
+// The prefiltered radiance for a Phong exponent: the chain's level for it (game_prefiltered_level), linear
+// between levels, as the game renderer's prefiltered() (render/game_renderer.cpp).
+vec3 prefiltered(vec3 r, float n_phong) {
+  float level = game_prefiltered_level(n_phong, float(u_levels), u_gloss_scale, u_gloss_bias);
+  int i0 = int(level);
+  int i1 = min(i0 + 1, u_levels - 1);
+  float t = level - float(i0);
+  return cube_sample(1 + i0, r) * (1.0 - t) + cube_sample(1 + i1, r) * t;
+}
+
+// The radiance along a camera ray: the sphere (centre 0, radius ${SPHERE.radius.toFixed(1)}) under the point light and/or the
+// HDRI (the game shading equation of render/game_renderer.cpp with the kernels it uses), the HDRI's radiance cube
+// behind (black without it).
 vec3 radiance(vec3 d) {
+  vec3 behind = u_env_on == 1 ? cube_sample(0, d) : vec3(0.0);
   float b = dot(u_eye, d);
   float c = dot(u_eye, u_eye) - ${(SPHERE.radius * SPHERE.radius).toFixed(1)};
   float disc = b * b - c;
-  if (disc < 0.0) return vec3(0.0);
+  if (disc < 0.0) return behind;
   float t = -b - sqrt(disc);
-  if (t <= 0.0) return vec3(0.0);
+  if (t <= 0.0) return behind;
   vec3 n = normalize(u_eye + d * t);
   vec3 pos = n * ${SPHERE.radius.toFixed(1)};
   // The renderer's frame on a sphere (render/accel.cpp, materials.cpp): tangent along (-n.z, 0, n.x).
@@ -396,13 +581,25 @@ vec3 radiance(vec3 d) {
   s = length(s) > 1.0e-6 ? normalize(s) : vec3(1.0, 0.0, 0.0);
   vec3 tb = cross(n, s);
   mat3 to_local = transpose(mat3(s, tb, n));
+  vec3 wo = to_local * (-d);
+  vec3 l = vec3(0.0);
   vec3 to_light = u_light_pos - pos;
   float d2 = dot(to_light, to_light);
-  if (!(d2 > 0.0)) return vec3(0.0);
-  vec3 wi = to_local * normalize(to_light);
-  vec3 wo = to_local * (-d);
-  vec3 e = point_light_irradiance(u_light, d2);
-  return u_units == 0 ? ${entry}_punctual_game(wi, wo, e) : ${entry}_punctual_radiometric(wi, wo, e);
+  if (u_point_on == 1 && d2 > 0.0) {
+    vec3 wi = to_local * normalize(to_light);
+    vec3 e = point_light_irradiance(u_light, d2);
+    l += u_units == 0 ? ${entry}_punctual_game(wi, wo, e) : ${entry}_punctual_radiometric(wi, wo, e);
+  }
+  if (u_env_on == 1) {
+    // Diffuse ambient from SH9 (wrapped band factors for wrapped diffuse), specular ambient rho_s x prefiltered.
+    vec3 e_over_pi = u_wrap > 0.0 ? sh9_irradiance_game_wrapped(u_sh, n, u_wrap) : sh9_irradiance_game(u_sh, n);
+    l += game_diffuse_ambient(u_kd, e_over_pi);
+    if (u_exponent > 0.0) {
+      vec3 r = game_reflect(-d, n);
+      l += game_specular_ambient(game_specular_albedo(u_rho_s, wo.z), prefiltered(r, u_exponent));
+    }
+  }
+  return l;
 }
 
 float display(float l) {
@@ -449,7 +646,9 @@ void main() {
       const buf = gl.createBuffer();
       gl.bindBuffer(gl.ARRAY_BUFFER, buf);
       gl.bufferData(gl.ARRAY_BUFFER, new Float32Array([-1, -1, 3, -1, -1, 3]), gl.STATIC_DRAW);
-      displayKernels = call({ op: 'kernels', names: ['srgb8_code', 'tone_filmic', 'tone_clamp', 'exposure_scale'], lang: 'essl' }).text;
+      displayKernels = call({ op: 'kernels', names: ['srgb8_code', 'tone_filmic', 'tone_clamp', 'exposure_scale', 'game_specular_albedo',
+                                                     'game_prefiltered_level', 'game_reflect', 'game_diffuse_ambient',
+                                                     'game_specular_ambient'], lang: 'essl' }).text;
     }
     const ex = call({ op: 'shader', model: state.model, params: state.params, lang: 'essl' });
     if (ex.error) { sphereError = ex.error; return; }
@@ -487,6 +686,41 @@ void main() {
     gl.uniform1i(u('u_units'), state.view.units === 'game' ? 0 : 1);
     gl.uniform1f(u('u_exposure'), Number(state.view.exposure));
     gl.uniform1i(u('u_tone'), state.view.tone === 'clamp' ? 0 : 1);
+    const lighting = state.view.lighting;
+    const env = lighting === 'point' ? null : (window.shadelabEnvironmentData || {})[state.view.env] || null;
+    gl.uniform1i(u('u_point_on'), lighting !== 'hdri' || !env ? 1 : 0);
+    gl.uniform1i(u('u_env_on'), env ? 1 : 0);
+    const lobe = call({ op: 'game_lobe', model: state.model, params: state.params });
+    if (lobe.error) throw new Error(lobe.error);
+    gl.uniform3fv(u('u_rho_s.bin[0]'), lobe.specular_albedo.flat());
+    gl.uniform3fv(u('u_kd'), lobe.diffuse_albedo);
+    gl.uniform1f(u('u_exponent'), lobe.exponent);
+    gl.uniform1f(u('u_wrap'), lobe.wrap);
+    if (env) {
+      if (env.blocks.length > MAX_BLOCKS) throw new Error(`HDRI '${env.name}': ${env.blocks.length} cube blocks, the shader takes ${MAX_BLOCKS}`);
+      gl.activeTexture(gl.TEXTURE0);
+      gl.bindTexture(gl.TEXTURE_2D, environmentTexture(env));
+      gl.uniform1i(u('u_env'), 0);
+      const sizes = new Int32Array(MAX_BLOCKS), rows = new Int32Array(MAX_BLOCKS);
+      env.blocks.forEach((b, i) => { sizes[i] = b.size; rows[i] = b.row; });
+      gl.uniform1iv(u('u_block_size[0]'), sizes);
+      gl.uniform1iv(u('u_block_row[0]'), rows);
+      gl.uniform1i(u('u_levels'), env.blocks.length - 1);
+      gl.uniform1f(u('u_gloss_scale'), env.gloss_scale);
+      gl.uniform1f(u('u_gloss_bias'), env.gloss_bias);
+      gl.uniform3fv(u('u_sh.c[0]'), env.sh.flat());
+    }
+    if (ex.tables_block) {
+      // The GGX energy tables' uniform block (the bytes `shadelab shader --tables-out` writes), binding point 1.
+      const index = gl.getUniformBlockIndex(program, ex.tables_block);
+      if (index !== gl.INVALID_INDEX) {
+        if (!tablesBuffer) tablesBuffer = gl.createBuffer();
+        gl.bindBuffer(gl.UNIFORM_BUFFER, tablesBuffer);
+        gl.bufferData(gl.UNIFORM_BUFFER, new Uint8Array(ex.tables), gl.STATIC_DRAW);
+        gl.uniformBlockBinding(program, index, 1);
+        gl.bindBufferBase(gl.UNIFORM_BUFFER, 1, tablesBuffer);
+      }
+    }
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     sphereError = '';
   }
@@ -512,6 +746,12 @@ void main() {
   function update() {
     const t0 = performance.now();
     const v = state.view;
+    // The HDRI's data first (a script load); the update runs again when it is there.
+    if (v.lighting !== 'point' && envLoads[v.env] !== 'loaded' && !(envLoads[v.env] || '').startsWith('HDRI')) {
+      loadEnvironment(v.env, changed);
+      return;
+    }
+    const envProblem = v.lighting !== 'point' && envLoads[v.env] !== 'loaded' ? envLoads[v.env] : null;
     const theta = numbers(v.theta, 0, 'theta');
     const wi = numbers(v.wi, 3, 'wi'), wo = numbers(v.wo, 3, 'wo');
     const base = { model: state.model, params: state.params };
@@ -526,7 +766,13 @@ void main() {
     const nParam = info.params.find((p) => p.name === 'n' && p.kind === 'scalar');
     const zooN = nParam ? Number(effective('n')) : 100;
     const zoo = call({ op: 'zoo', n: zooN });
-    const failed = [probe, albedo, curve, lobe, lobe3d, zoo].find((r) => r.error);
+    const overlays = parseOverlay(v.overlay).map((o) => {
+      const b = { model: o.model, params: o.params };
+      const oc = call(Object.assign({ op: 'albedo', theta: ALBEDO_CURVE }, b));
+      const ol = call(Object.assign({ op: 'lobe', theta_in: thetaIn, times_cos: v.cos === '1', fixed: v.fixed, samples: 361 }, b));
+      return { model: o.model, params: o.params, albedo_curve: oc, lobe: ol };
+    });
+    const failed = [probe, albedo, curve, lobe, lobe3d, zoo, ...overlays.flatMap((o) => [o.albedo_curve, o.lobe])].find((r) => r.error);
     if (failed) {
       // Still a state (with the error) and the ready mark: a script waiting on the page is told.
       errors = [failed.error];
@@ -535,12 +781,13 @@ void main() {
       document.body.dataset.ready = String(Number(document.body.dataset.ready || 0) + 1);
       return;
     }
-    drawLobe(lobe);
+    drawLobe(lobe, overlays);
     drawLobe3d(lobe3d);
-    drawAlbedo(curve);
+    drawAlbedo(curve, overlays);
     const probeState = { wi, wo, f: probe.f };
     fillTables(albedo, probeState, { n: zooN, rows: zoo.rows });
     try { drawSphere(); } catch (e) { sphereError = e.message; }
+    if (envProblem && !sphereError) sphereError = envProblem;  // drawn with the point light alone
     if (sphereError) { errors = [sphereError]; showErrors(); }
     const query = queryFromState(state);
     history.replaceState(null, '', query);
@@ -549,12 +796,19 @@ void main() {
     const sphereState = { width: $('shadelab-sphere').width, height: $('shadelab-sphere').height, center: SPHERE.center,
                           radius: SPHERE.radius, camera: cam, spp: SPHERE.spp, units: v.units,
                           light_position: numbers(v.light_pos, 3, 'light_pos'), light: numbers(v.light, 0, 'light'),
-                          exposure: Number(v.exposure), tone: v.tone, error: sphereError || null };
+                          exposure: Number(v.exposure), tone: v.tone, lighting: v.lighting,
+                          env: v.lighting === 'point' ? null : v.env,
+                          env_file: v.lighting !== 'point' && !envProblem ? window.shadelabEnvironmentData[v.env].file : null,
+                          env_size: ENVIRONMENTS.size, specular_size: ENVIRONMENTS.specular_size,
+                          environments: ENVIRONMENTS.names.slice(), env_message: ENVIRONMENTS.message,
+                          error: sphereError || null };
     const figures = {
       model: state.model, params: Object.assign({}, state.params),
       all_params: Object.fromEntries(info.params.map((p) => [p.name, effective(p.name)])), theta: albedo.theta, albedo: albedo.albedo,
       probe: probeState, query, view: Object.assign({}, v),
       albedo_curve: { theta: curve.theta, albedo: curve.albedo },
+      overlays: overlays.map((o) => ({ model: o.model, params: o.params, albedo_curve: { theta: o.albedo_curve.theta, albedo: o.albedo_curve.albedo },
+                                       lobe: { angle: o.lobe.angle, luminance: o.lobe.luminance } })),
       lobe: { theta_in: thetaIn, fixed: v.fixed, times_cos: v.cos === '1', angle: lobe.angle, luminance: lobe.luminance },
       zoo: { n: zooN, rows: zoo.rows.map((r) => ({ model: r.model, closed_form_value: r.closed_form_value, numeric: r.numeric,
                                                    relative_error: r.relative_error, lower: r.lower, upper: r.upper })) },
