@@ -7,8 +7,11 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <set>
 
 #include "cli_run.h"
+#include "shadelab/envmap/sh.h"
+#include "shadelab/image/image_io.h"
 
 namespace {
 
@@ -44,6 +47,16 @@ TEST(CliShBands, BandsThreeIsTodaysOutputExactly) {
     EXPECT_EQ(a.code, 0) << a.err;
     EXPECT_EQ(a.out, b.out) << extra;
   }
+  // Today's output, not only the same as without the flag: today's keys and none more, today's text, and
+  // the coefficients of project_sh9 (sh.cpp) bit for bit.
+  const auto j = json_of(run("bake sh " + in + " --bands 3 --json"));
+  std::set<std::string> keys;
+  for (const auto& [key, value] : j.items()) keys.insert(key);
+  EXPECT_EQ(keys, (std::set<std::string>{"order", "basis", "units", "convention", "band_factors", "window", "lights",
+                                         "light_normalization", "radiance_coefficients", "irradiance_coefficients"}));
+  EXPECT_EQ(run("bake sh " + in + " --bands 3").out.rfind("SH9 irradiance coefficients (game units: E/pi):", 0), 0u);
+  const shadelab::Sh9 sh = shadelab::project_sh9(shadelab::read_image(in).value());
+  for (std::size_t i = 0; i < 9; ++i) EXPECT_EQ(j["radiance_coefficients"][i][1].get<double>(), sh.c[i].g) << i;
 }
 
 TEST(CliShBands, FiveBandsHaveTwentyFiveCoefficientsAndTheCosineFactors) {
