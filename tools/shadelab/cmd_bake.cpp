@@ -33,6 +33,9 @@
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/envmap/prefilter_ggx.h"
 #include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/sh_bands.h"
+#include "shadelab/envmap/sh_error.h"
+#include "shadelab/envmap/zh3.h"
 #include "shadelab/image/image_io.h"
 
 namespace shadelab::cli {
@@ -72,6 +75,9 @@ struct BakeOptions {
   bool progress = false;
   std::vector<std::string> lights;         // sh: DIR[:COLOUR], game colour
   std::string light_normalization = "d3dx";  // sh: d3dx (16/17) or delta
+  int bands = 3;                           // sh: --bands 2..5 (sh_bands.h)
+  std::string zh3;                         // sh: --zh3 stored | hallucinated (zh3.h)
+  bool error_report = false;               // sh: --error-report (sh_error.h)
   std::vector<std::string> given;          // the options given on the command line (set after parsing)
   bool has(const std::string& option) const { return std::find(given.begin(), given.end(), option) != given.end(); }
 };
@@ -394,10 +400,162 @@ ShLight parse_sh_light(const std::string& text) {
   return l;
 }
 
+// The environment cube of --error-report and the face size of its exact irradiance (sh_error.h): small enough
+// for the brute force to take about a second, fine enough that its own discretization (2e-4) is negligible.
+constexpr int error_report_env_size = 128;
+constexpr int error_report_eval_size = 32;
+
+std::string sh_name(int l, int m) { return "L" + std::to_string(l) + std::to_string(m); }
+
+// The JSON of `bake sh --bands N` for N != 3: the keys of sh9_json, generalised, plus "bands".
+nlohmann::json sh_bands_json(const ShBands& sh, RadianceUnits units, ShWindow window, const std::string& window_name,
+                             const nlohmann::json& lights, const std::string& light_normalization) {
+  const std::vector<double> factors = sh_irradiance_factors(sh.bands, units == RadianceUnits::game, window);
+  const ShBands irr = sh_bands_scale(sh, factors);
+  nlohmann::json radiance = nlohmann::json::array(), irradiance = nlohmann::json::array();
+  std::string names;
+  for (int l = 0; l < sh.bands; ++l)
+    for (int m = -l; m <= l; ++m) {
+      const auto i = static_cast<std::size_t>(sh_index(l, m));
+      radiance.push_back(to_json(sh.c[i]));
+      irradiance.push_back(to_json(irr.c[i]));
+      names += (names.empty() ? "" : ", ") + std::string("Y") + std::to_string(l) + std::to_string(m);
+    }
+  return {
+      {"order", sh.bands},
+      {"bands", sh.bands},
+      {"basis", "real SH, Condon-Shortley phase, z polar axis, Sloan 2008 order (index l^2 + l + m): " + names +
+                    "; world axes (+Y up)"},
+      {"units", units == RadianceUnits::game ? "game" : "radiometric"},
+      {"convention", units == RadianceUnits::game
+                         ? "irradiance_coefficients give E/pi = sum_i c_i Y_i(n): multiply by kd for the diffuse "
+                           "exit radiance (game units, no pi)"
+                         : "irradiance_coefficients give E = sum_i c_i Y_i(n) in W/m^2 per unit of radiance"},
+      {"band_factors", factors},
+      {"window", window_name},
+      {"lights", lights},
+      {"light_normalization", light_normalization},
+      {"radiance_coefficients", radiance},
+      {"irradiance_coefficients", irradiance}};
+}
+
+nlohmann::json zh3_json(const Zh3& z, RadianceUnits units, ShWindow window) {
+  const std::vector<double> f = sh_irradiance_factors(3, units == RadianceUnits::game, window);
+  nlohmann::json radiance = nlohmann::json::array(), irradiance = nlohmann::json::array();
+  for (std::size_t i = 0; i < 4; ++i) {
+    radiance.push_back(to_json(z.linear[i]));
+    irradiance.push_back(to_json(z.linear[i] * f[i == 0 ? 0 : 1]));
+  }
+  radiance.push_back(to_json(z.zonal));
+  irradiance.push_back(to_json(z.zonal * f[2]));
+  return {{"mode", z.mode == Zh3Mode::stored ? "stored" : "hallucinated"},
+          {"source", "Roughton et al., ZH3: Quadratic Zonal Harmonics, i3D 2024"},
+          {"axis", {z.axis.x, z.axis.y, z.axis.z}},
+          {"axis_definition", "normalize of the Rec. 709 luminance of (-c11, -c1-1, c10): the L1 direction"},
+          {"zonal_definition", z.mode == Zh3Mode::stored
+                                   ? "z = integral L(w) Y20(axis . w) dw = sqrt(4 pi/5) sum_m c2m Y2m(axis)"
+                                   : "z = c00 (0.08 r + 0.6 r^2), r = |(-c11, -c1-1, c10) . axis| / c00 (per channel)"},
+          {"evaluation", "sum_i c_i Y_i(n) over i = 0..3, plus c_4 Y20(axis . n), Y20(t) = sqrt(5/(16 pi)) (3 t^2 - 1)"},
+          {"band_factors", f},
+          {"radiance_coefficients", radiance},
+          {"irradiance_coefficients", irradiance}};
+}
+
+nlohmann::json error_report_json(const Image& img, const std::string& input) {
+  const CubeMap env = environment_cube_at(img, input, error_report_env_size);
+  nlohmann::json rows = nlohmann::json::array();
+  for (const ShEncodingError& e : sh_encoding_errors(env, error_report_eval_size)) {
+    rows.push_back({{"encoding", e.encoding},
+                    {"coefficients_per_channel", e.coefficients},
+                    {"mean_relative_error", e.mean_relative},
+                    {"max_relative_error", e.max_relative},
+                    {"negative_solid_angle_sr", e.negative_solid_angle},
+                    {"negative_fraction", e.negative_solid_angle / (4.0 * pi)}});
+  }
+  return {{"environment_face_size", env.size},
+          {"evaluation_face_size", error_report_eval_size},
+          {"reference", "exact irradiance: brute-force cosine convolution of the environment cube (irradiance_cube)"},
+          {"error", "|Y(E_enc) - Y(E)| / Y(E) per evaluation texel, Y the Rec. 709 luminance; mean weighted by solid "
+                    "angle; negative: solid angle of texels where any channel of E_enc < 0"},
+          {"lights", "not included: the report measures the environment alone"},
+          {"encodings", rows}};
+}
+
+// bake sh with --bands other than 3, --zh3 or --error-report: today's SH9 path is left exactly as it was.
+void run_sh_extended(const BakeOptions& o, const Image& img, const std::vector<ShLight>& lights, RadianceUnits units,
+                     ShWindow window) {
+  // Bands 0..2 are project_sh9 of the same input, so --bands 3 --zh3 keeps today's coefficients bit for bit.
+  const int bands = std::max(o.bands, o.has("--zh3") ? 3 : 2);
+  ShBands sh = is_latlong(img) && !o.has("--input-size") ? project_sh_bands(img, bands)
+                                                         : project_sh_bands(environment_to_cube(o, img), bands);
+  nlohmann::json lights_json = nlohmann::json::array();
+  for (const ShLight& l : lights) {
+    sh += sh_bands_directional_light(l.to_light, l.colour, bands, o.light_normalization == "d3dx");
+    lights_json.push_back({{"direction", {l.to_light.x, l.to_light.y, l.to_light.z}}, {"color", to_json(l.colour)}});
+  }
+  ShBands out(o.bands);
+  for (std::size_t i = 0; i < out.c.size(); ++i) out.c[i] = sh.c[i];
+  nlohmann::json j;
+  if (o.bands == 3) {
+    Sh9 s9;
+    for (std::size_t i = 0; i < 9; ++i) s9.c[i] = out.c[i];
+    j = sh9_json(s9, units, window, o.window, lights_json, o.light_normalization);
+  } else {
+    j = sh_bands_json(out, units, window, o.window, lights_json, o.light_normalization);
+  }
+  if (o.has("--zh3")) j["zh3"] = zh3_json(zh3_from_sh(sh, o.zh3 == "stored" ? Zh3Mode::stored : Zh3Mode::hallucinated), units, window);
+  if (o.error_report) j["error_report"] = error_report_json(img, o.input);
+  if (!o.out.empty()) {
+    const std::string text = j.dump(2) + "\n";
+    unwrap(write_file_atomically(o.out, std::vector<char>(text.begin(), text.end())));
+  }
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("SH irradiance coefficients, {} bands ({} units: {}):\n", o.bands, o.units,
+             units == RadianceUnits::game ? "E/pi" : "E, W/m^2");
+  for (int l = 0; l < o.bands; ++l)
+    for (int m = -l; m <= l; ++m) {
+      const auto& c = j["irradiance_coefficients"][static_cast<std::size_t>(sh_index(l, m))];
+      fmt::print("  {:<5} {:>14.8f} {:>14.8f} {:>14.8f}\n", sh_name(l, m), c[0].get<double>(), c[1].get<double>(),
+                 c[2].get<double>());
+    }
+  if (j.contains("zh3")) {
+    const auto& z = j["zh3"];
+    fmt::print("ZH3 ({}), axis ({:.6f}, {:.6f}, {:.6f}):\n", z["mode"].get<std::string>(), z["axis"][0].get<double>(),
+               z["axis"][1].get<double>(), z["axis"][2].get<double>());
+    const char* names[5] = {"L00", "L1-1", "L10", "L11", "Z20"};
+    for (std::size_t i = 0; i < 5; ++i) {
+      const auto& c = z["irradiance_coefficients"][i];
+      fmt::print("  {:<5} {:>14.8f} {:>14.8f} {:>14.8f}\n", names[i], c[0].get<double>(), c[1].get<double>(),
+                 c[2].get<double>());
+    }
+  }
+  if (j.contains("error_report")) {
+    fmt::print("irradiance error against the exact irradiance ({} x {} faces from a {} x {} cube):\n",
+               error_report_eval_size, error_report_eval_size, error_report_env_size, error_report_env_size);
+    fmt::print("  {:<18} {:>6} {:>10} {:>10} {:>12}\n", "encoding", "coeffs", "mean", "max", "negative sr");
+    for (const auto& r : j["error_report"]["encodings"]) {
+      fmt::print("  {:<18} {:>6} {:>9.2f}% {:>9.2f}% {:>12.4f}\n", r["encoding"].get<std::string>(),
+                 r["coefficients_per_channel"].get<int>(), 100.0 * r["mean_relative_error"].get<double>(),
+                 100.0 * r["max_relative_error"].get<double>(), r["negative_solid_angle_sr"].get<double>());
+    }
+  }
+  if (!o.out.empty()) fmt::print("wrote {}\n", o.out);
+}
+
 void run_sh(const BakeOptions& o) {
   refuse_options(o, "sh", {"--size", "--layout", "--format"}, "it writes nine coefficients, not a cube map");
   const RadianceUnits units = parse_units(o.units);
   const ShWindow window = parse_window(o.window);
+  if (o.bands < 2 || o.bands > sh_max_bands) {
+    throw UsageError(fmt::format("--bands: {} is not one of 2 | 3 | 4 | 5 (L1 .. L4)", o.bands));
+  }
+  if (o.has("--zh3") && o.zh3 != "stored" && o.zh3 != "hallucinated") {
+    throw UsageError("--zh3: '" + o.zh3 + "' is not one of stored | hallucinated");
+  }
+  const bool extended = o.bands != 3 || o.has("--zh3") || o.error_report;
   if (o.light_normalization != "d3dx" && o.light_normalization != "delta") {
     throw UsageError("--light-normalization: '" + o.light_normalization + "' is not one of d3dx | delta");
   }
@@ -414,6 +572,10 @@ void run_sh(const BakeOptions& o) {
   // A lat-long input is projected texel by texel (each with its exact solid angle), without resampling to a
   // cube first, unless --input-size asks for that cube: the command then costs about one read of the file.
   Image img = read_environment_image(o);
+  if (extended) {
+    run_sh_extended(o, img, lights, units, window);
+    return;
+  }
   Sh9 sh = is_latlong(img) && !o.has("--input-size") ? project_sh9(img) : project_sh9(environment_to_cube(o, std::move(img)));
   // D3DX-style punctual lights (sh.h): each adds the projection of pi c delta(w - d), scaled by 16/17 with
   // d3dx normalization so that the game irradiance facing a light of colour c is exactly c.
@@ -620,6 +782,13 @@ void add_bake_command(CLI::App& app, Command& command) {
     sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");
     if (std::string(name) == "sh") {
       sub->add_option("--window", o->window, "ringing window: none, hanning or lanczos")->capture_default_str();
+      sub->add_option("--bands", o->bands, "number of SH bands: 2 (L1, 4 coefficients), 3 (L2, 9), 4 (L3, 16), 5 (L4, 25)")
+          ->capture_default_str();
+      sub->add_option("--zh3", o->zh3,
+                      "also write ZH3 (L1 + one zonal L2 coefficient along the luminance L1 axis, Roughton et al. 2024): "
+                      "stored (projected) or hallucinated (from L1)");
+      sub->add_flag("--error-report", o->error_report,
+                    "add each encoding's irradiance error against the exact irradiance (L1..L4, windows, ZH3)");
       sub->add_option("--light", o->lights,
                       "add a directional light to the coefficients: DIR[:COLOUR], toward x,y,z, game colour (a number "
                       "or r,g,b; default 1); repeatable");
