@@ -170,7 +170,7 @@ def judge(module, rel, index, new_line):
                     args.append("--gtest_filter=" + analysis_filter(rel))
                 code, out = run(args, timeout=TIMEOUT)
                 if code != 0:
-                    failed = re.findall(r"\[  FAILED  \] (\S+)", out)
+                    failed = re.findall(r"\[  FAILED  \] ([^\s,]+)", out)
                     return "killed", (failed[0] if failed else ("timeout" if code == 124 else f"exit {code}"))
             return "survived", ""
         finally:
