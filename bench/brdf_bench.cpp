@@ -1,6 +1,9 @@
 // Cost per call of eval, pdf and sample for every registered model, at default parameters, on a fixed
 // set of random direction pairs (so the branch mix is the same for every model). The baseline measured in
 // the same run is "lambert", the cheapest model: compare models as ratios to it, not as absolute times.
+// Variants beside the defaults (issue 10, section 4): ggx with each sampler (ndf, vndf, vndf-caps, vndf-bounded)
+// and with Kulla-Conty, cook-torrance with d = ggx, filament with Burley diffuse and without compensation; they
+// are named model/param=value (docs/performance.md has a table).
 // eval_batch/MODEL: Brdf::eval_batch over all the pairs per iteration, reported per pair (items_per_second),
 // against eval/MODEL, one virtual call per pair.
 //
@@ -41,8 +44,8 @@ const Inputs& inputs() {
   return in;
 }
 
-void bench_eval(benchmark::State& state, const std::string& model) {
-  const auto f = make_brdf(model).value();
+void bench_eval(benchmark::State& state, const std::string& model, const ParamAssignments& params) {
+  const auto f = make_brdf(model, params).value();
   const auto& in = inputs();
   std::size_t i = 0;
   for (auto _ : state) {
@@ -52,8 +55,8 @@ void bench_eval(benchmark::State& state, const std::string& model) {
   state.SetItemsProcessed(state.iterations());
 }
 
-void bench_eval_batch(benchmark::State& state, const std::string& model) {
-  const auto f = make_brdf(model).value();
+void bench_eval_batch(benchmark::State& state, const std::string& model, const ParamAssignments& params) {
+  const auto f = make_brdf(model, params).value();
   const auto& in = inputs();
   std::vector<Rgb> out(kPairs);
   for (auto _ : state) {
@@ -64,8 +67,8 @@ void bench_eval_batch(benchmark::State& state, const std::string& model) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(kPairs));
 }
 
-void bench_pdf(benchmark::State& state, const std::string& model) {
-  const auto f = make_brdf(model).value();
+void bench_pdf(benchmark::State& state, const std::string& model, const ParamAssignments& params) {
+  const auto f = make_brdf(model, params).value();
   const auto& in = inputs();
   std::size_t i = 0;
   for (auto _ : state) {
@@ -75,8 +78,8 @@ void bench_pdf(benchmark::State& state, const std::string& model) {
   state.SetItemsProcessed(state.iterations());
 }
 
-void bench_sample(benchmark::State& state, const std::string& model) {
-  const auto f = make_brdf(model).value();
+void bench_sample(benchmark::State& state, const std::string& model, const ParamAssignments& params) {
+  const auto f = make_brdf(model, params).value();
   const auto& in = inputs();
   std::size_t i = 0;
   for (auto _ : state) {
@@ -87,11 +90,24 @@ void bench_sample(benchmark::State& state, const std::string& model) {
 }
 
 const bool registered = [] {
-  for (const auto& m : brdf_models()) {
-    benchmark::RegisterBenchmark(("eval/" + m.name).c_str(), bench_eval, m.name);
-    benchmark::RegisterBenchmark(("eval_batch/" + m.name).c_str(), bench_eval_batch, m.name);
-    benchmark::RegisterBenchmark(("pdf/" + m.name).c_str(), bench_pdf, m.name);
-    benchmark::RegisterBenchmark(("sample/" + m.name).c_str(), bench_sample, m.name);
+  struct Variant {
+    std::string model;
+    ParamAssignments params;
+  };
+  std::vector<Variant> variants;
+  for (const auto& m : brdf_models()) variants.push_back({m.name, {}});
+  for (const char* s : {"ndf", "vndf", "vndf-caps", "vndf-bounded"}) variants.push_back({"ggx", {{"sampling", s}}});
+  variants.push_back({"ggx", {{"ms", "kulla-conty"}}});
+  variants.push_back({"cook-torrance", {{"d", "ggx"}}});
+  variants.push_back({"filament", {{"diffuse", "burley"}}});
+  variants.push_back({"filament", {{"energy_compensation", "off"}}});
+  for (const auto& v : variants) {
+    std::string name = v.model;
+    for (const auto& [key, value] : v.params) name += "/" + key + "=" + value;
+    benchmark::RegisterBenchmark(("eval/" + name).c_str(), bench_eval, v.model, v.params);
+    benchmark::RegisterBenchmark(("eval_batch/" + name).c_str(), bench_eval_batch, v.model, v.params);
+    benchmark::RegisterBenchmark(("pdf/" + name).c_str(), bench_pdf, v.model, v.params);
+    benchmark::RegisterBenchmark(("sample/" + name).c_str(), bench_sample, v.model, v.params);
   }
   return true;
 }();

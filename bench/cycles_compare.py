@@ -1,4 +1,4 @@
-# Builds a shadelab scene (Lambert spheres and quads, emissive spheres and quads, a uniform environment) in
+# Builds a shadelab scene (Lambert and GGX spheres and quads, emissive spheres and quads, a uniform environment) in
 # Blender and renders it with Cycles, for bench/cycles_compare.sh. Run as:
 #   blender -b --factory-startup --python bench/cycles_compare.py -- SCENE.json SPP OUT.exr THREADS [SEED]
 # Settings chosen to match shadelab exactly: the same number of scattering events (shadelab's max_depth counts
@@ -78,12 +78,40 @@ for name, m in doc.get("materials", {}).items():
         node.inputs["Strength"].default_value = 1.0
         mat.node_tree.links.new(node.outputs["Emission"], out.inputs["Surface"])
     else:
-        if m.get("model") != "lambert":
-            sys.exit("cycles_compare: material %s: only lambert and emission have an exact Cycles equivalent" % name)
-        node = nodes.new("ShaderNodeBsdfDiffuse")
-        node.inputs["Color"].default_value = (*colour(m.get("params", {}).get("kd", 0.5)), 1.0)
-        node.inputs["Roughness"].default_value = 0.0
-        mat.node_tree.links.new(node.outputs["BSDF"], out.inputs["Surface"])
+        params = m.get("params", {})
+        if m.get("model") == "lambert":
+            node = nodes.new("ShaderNodeBsdfDiffuse")
+            node.inputs["Color"].default_value = (*colour(params.get("kd", 0.5)), 1.0)
+            node.inputs["Roughness"].default_value = 0.0
+            mat.node_tree.links.new(node.outputs["BSDF"], out.inputs["Surface"])
+        elif m.get("model") == "ggx":
+            # ggx with f = none, g = smith-separable, ms = none, isotropic: kd/pi + ks D G1 G1 / (4 N.L N.V) is
+            # Cycles 3.4's Diffuse BSDF (kd) added to its Glossy BSDF, distribution GGX (colour ks, no Fresnel,
+            # separable Smith G1(i) G1(o), alpha = Roughness^2, the same perceptual roughness as ggx's).
+            want = {"f": "none", "g": "smith-separable", "ms": "none"}
+            for key, value in want.items():
+                if params.get(key) != value:
+                    sys.exit("cycles_compare: material %s: ggx needs %s = %s for Cycles' Glossy GGX" % (name, key, value))
+            if any(k in params for k in ("alpha_x", "alpha_y")):
+                sys.exit("cycles_compare: material %s: anisotropic ggx is not compared" % name)
+            roughness = params["roughness"] if "roughness" in params else math.sqrt(params.get("alpha", 0.25))
+            glossy = nodes.new("ShaderNodeBsdfGlossy")
+            glossy.distribution = "GGX"
+            glossy.inputs["Color"].default_value = (*colour(params.get("ks", 1.0)), 1.0)
+            glossy.inputs["Roughness"].default_value = roughness
+            kd = colour(params.get("kd", 0.2))
+            if max(kd) > 0.0:
+                diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+                diffuse.inputs["Color"].default_value = (*kd, 1.0)
+                diffuse.inputs["Roughness"].default_value = 0.0
+                add = nodes.new("ShaderNodeAddShader")
+                mat.node_tree.links.new(diffuse.outputs["BSDF"], add.inputs[0])
+                mat.node_tree.links.new(glossy.outputs["BSDF"], add.inputs[1])
+                mat.node_tree.links.new(add.outputs["Shader"], out.inputs["Surface"])
+            else:
+                mat.node_tree.links.new(glossy.outputs["BSDF"], out.inputs["Surface"])
+        else:
+            sys.exit("cycles_compare: material %s: only lambert, ggx and emission have an exact Cycles equivalent" % name)
     materials[name] = mat
 
 for shape in doc.get("shapes", []):

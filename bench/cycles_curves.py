@@ -15,6 +15,8 @@
 # - Curves: RMSE against spp for both, the fitted slope of log RMSE on log spp, and for each of Cycles' points
 #   the time shadelab needs to reach the same RMSE (log-log interpolation of shadelab's curve, extrapolation
 #   by its fitted power law outside it), divided by Cycles' time there.
+# - Per sphere (issue 10): the ratio of the two converged references' means over the pixels that see only
+#   that sphere (bench/cycles_spheres.py), so the GGX spheres are checked material by material.
 import fcntl
 import json
 import math
@@ -85,6 +87,11 @@ def main():
         c = compare(refs[name][0], refs[name][1])
         ref_var[name] = c["rmse"] ** 2 / 2.0
     agreement = compare(refs["shadelab"][0], refs["cycles"][0])
+    # Per-sphere mean ratios of the converged references (bench/cycles_spheres.py, in Blender's Python).
+    p = subprocess.run(["blender", "-b", "--factory-startup", "--python", os.path.join(here, "cycles_spheres.py"), "--",
+                        scene, refs["shadelab"][0], refs["cycles"][0]], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True)
+    spheres = json.loads(p.stdout.split("SPHERES_RESULT ", 1)[1].splitlines()[0]) if "SPHERES_RESULT " in p.stdout else []
 
     curves = {name: [] for name in renderers}
     for spp in spps:
@@ -127,6 +134,9 @@ def main():
     print("Converged shadelab / Cycles mean luminance: %.5f (independent renderers, same scene)"
           % agreement["mean_luminance_ratio"])
     print("Cycles sampling pattern: %s" % info["cycles"]["pattern"])
+    report["sphere_mean_ratios"] = spheres
+    for sp in spheres:
+        print("  sphere %d (%s): shadelab / Cycles mean %.5f over %d pixels" % (sp["shape"], sp["material"], sp["ratio"], sp["pixels"]))
     print("%5s | %10s %9s %9s | %10s %9s %9s" % ("spp", "shadelab", "render s", "process s", "cycles", "render s", "process s"))
     for s, c in zip(curves["shadelab"], curves["cycles"]):
         print("%5d | %10.4g %9.3g %9.3g | %10.4g %9.3g %9.3g" % (s["spp"], s["rmse"], s["render"], s["process"],

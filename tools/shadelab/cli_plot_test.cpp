@@ -545,4 +545,41 @@ TEST(CliPlot, BadInput) {
   expect_usage_error("sheet phong --hdri " + dir + "square.exr" + sheet_out, "twice as wide");
 }
 
+
+// Issue 10: plot lobe, plot albedo and sheet take the GGX family (ggx, burley, filament).
+TEST(CliPlot, TheGgxFamilyInLobeAlbedoAndSheet) {
+  const std::string dir = temp_dir();
+  const auto lobe = json_of(run("plot lobe ggx burley filament --param ggx:roughness=0.4 --theta-in 30 --samples 37 "
+                                "--out " + dir + "family_lobe.svg --json"));
+  expect_svg(dir + "family_lobe.svg", 800, 600);
+  ASSERT_EQ(lobe["series"].size(), 3u);
+  std::vector<shadelab::BrdfPtr> models;
+  models.push_back(brdf("ggx", {{"roughness", "0.4"}}));
+  models.push_back(brdf("burley", {}));
+  models.push_back(brdf("filament", {}));
+  for (std::size_t m = 0; m < 3; ++m) {
+    const auto& s = lobe["series"][m];
+    for (std::size_t i = 3; i < 36; i += 8) {
+      const double a = s["angle_deg"][i].get<double>();
+      expect_rel(s["rgb"][i][1].get<double>(), models[m]->eval(plane_dir(-30.0), plane_dir(a)).g, 1e-12,
+                 s["label"].get<std::string>() + " at " + std::to_string(a));
+    }
+  }
+  // Albedo oracles: the white furnace (ggx with F = 1, kd = 0 and Kulla-Conty reflects 1, issue 10 section 2)
+  // and Burley at roughness 0 seen from the normal: F_D90 = 1/2, albedo kd (1 - 2 int_0^1 (1-mu)^5 mu dmu / 2)
+  // = kd (1 - B(2, 6)) = kd (1 - 1/42).
+  const auto albedo = json_of(run("plot albedo ggx burley --param ggx:f=none --param ggx:kd=0 --param ggx:ms=kulla-conty "
+                                  "--param ggx:roughness=0.8 --param burley:kd=1 --param burley:roughness=0 --theta 0 "
+                                  "--theta 60 --out " + dir + "family_albedo.png --json"));
+  expect_png(dir + "family_albedo.png", 800, 600);
+  for (std::size_t i = 0; i < 2; ++i) EXPECT_NEAR(albedo["series"][0]["rgb"][i][0].get<double>(), 1.0, 1e-3) << i;
+  EXPECT_NEAR(albedo["series"][1]["rgb"][0][0].get<double>(), 1.0 - 1.0 / 42.0, 1e-6);
+
+  const auto sheet = json_of(run("sheet ggx burley filament --cell 16 --spp 2 --light directional --out " + dir +
+                                 "family_sheet.png --json"));
+  expect_png(dir + "family_sheet.png", sheet["width"].get<int>(), sheet["height"].get<int>());
+  ASSERT_EQ(sheet["cells"].size(), 3u);
+  EXPECT_EQ(sheet["cells"][2]["model"], "filament");
+}
+
 }  // namespace

@@ -3,6 +3,8 @@
 #include <tiny_gltf.h>
 #include <tiny_obj_loader.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -475,13 +477,28 @@ MeshTransform node_transform(const tinygltf::Node& node) {
 }
 
 // Accumulates the primitives of the visited nodes into one mesh.
-struct GltfBuilder {
-  const tinygltf::Model& model;
+// With `split`, one mesh per glTF material index (-1: primitives without a material); otherwise one mesh.
+struct GltfPart {
   MeshShape mesh;
   bool all_normals = true;
   bool all_uvs = true;
+};
+
+struct GltfBuilder {
+  const tinygltf::Model& model;
+  bool split = false;
+  std::map<int, GltfPart> parts;
+  std::size_t total_vertices = 0;
+  std::size_t total_triangles = 0;
 
   Result<bool> add_primitive(const tinygltf::Primitive& prim, const std::string& where, const MeshTransform& xf) {
+    if (split && prim.material >= 0 && static_cast<std::size_t>(prim.material) >= model.materials.size()) {
+      return make_error(where + ": material " + std::to_string(prim.material) + " does not exist");
+    }
+    GltfPart& part = parts[split ? std::max(prim.material, -1) : 0];
+    MeshShape& mesh = part.mesh;
+    bool& all_normals = part.all_normals;
+    bool& all_uvs = part.all_uvs;
     if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
       return make_error(where + ": mode " + std::to_string(prim.mode) + " is not a triangle list (mode 4)");
     }
@@ -514,7 +531,7 @@ struct GltfBuilder {
     const std::size_t base = mesh.positions.size();
     const std::size_t count = positions->count;
     // Every instance copies its vertices: bound them (3 per triangle of the limit) before allocating.
-    if (count > 3 * max_scene_triangles - base) {
+    if (count > 3 * max_scene_triangles - total_vertices) {
       return make_error(where + ": the node hierarchy instances more than " + std::to_string(3 * max_scene_triangles) +
                         " vertices (the limit is " + std::to_string(max_scene_triangles) + " triangles)");
     }
@@ -554,7 +571,7 @@ struct GltfBuilder {
     if (local.size() % 3 != 0) {
       return make_error(where + ": " + std::to_string(local.size()) + " indices is not a whole number of triangles");
     }
-    if (local.size() / 3 > max_scene_triangles - mesh.indices.size() / 3) {
+    if (local.size() / 3 > max_scene_triangles - total_triangles) {
       return make_error(where + ": the node hierarchy instances more than " + std::to_string(max_scene_triangles) +
                         " triangles");
     }
@@ -566,6 +583,8 @@ struct GltfBuilder {
       mesh.indices.push_back(b + local[mirror ? t + 2 : t + 1]);
       mesh.indices.push_back(b + local[mirror ? t + 1 : t + 2]);
     }
+    total_vertices += count;
+    total_triangles += local.size() / 3;
     return true;
   }
 
@@ -675,7 +694,13 @@ std::string_view gltf_json(const std::string& bytes, bool binary) {
 }
 
 
-Result<MeshShape> read_gltf(const std::filesystem::path& path) {
+// The meshes of a glTF file (one, or one per material with `split`) and its JSON text.
+struct GltfRead {
+  std::vector<std::pair<int, MeshShape>> parts;  // (glTF material index or -1, mesh); key 0 without split
+  std::string json_text;
+};
+
+Result<GltfRead> read_gltf_parts(const std::filesystem::path& path, bool split) {
   const bool binary = lower_extension(path) == ".glb";
   auto bytes = read_text(path, max_mesh_file_bytes);
   if (!bytes) return mesh_error(path, "cannot read glTF: " + bytes.error().message);
@@ -709,8 +734,7 @@ Result<MeshShape> read_gltf(const std::filesystem::path& path) {
     return mesh_error(path, "required extension " + model.extensionsRequired.front() + " is not supported");
   }
 
-  GltfBuilder builder{model, {}, true, true, 0};
-  builder.mesh.source = path.string();
+  GltfBuilder builder{model, split, {}, 0, 0, 0};
   std::vector<int> roots;
   if (!model.scenes.empty()) {
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
@@ -734,13 +758,203 @@ Result<MeshShape> read_gltf(const std::filesystem::path& path) {
     auto r = builder.visit(root);
     if (!r) return mesh_error(path, r.error().message);
   }
-  MeshShape mesh = std::move(builder.mesh);
-  if (!builder.all_normals) mesh.normals.clear();
-  if (!builder.all_uvs) mesh.uvs.clear();
-  finish_normals(mesh);
-  auto checked = check_mesh(path, mesh);
-  if (!checked) return checked.error();
-  return mesh;
+  if (builder.parts.empty()) builder.parts[0] = GltfPart{};
+  GltfRead out;
+  out.json_text = std::string(gltf_json(*bytes, binary));
+  for (auto& [key, part] : builder.parts) {
+    MeshShape mesh = std::move(part.mesh);
+    mesh.source = path.string();
+    if (!part.all_normals) mesh.normals.clear();
+    if (!part.all_uvs) mesh.uvs.clear();
+    finish_normals(mesh);
+    auto checked = check_mesh(path, mesh);
+    if (!checked) return checked.error();
+    out.parts.emplace_back(key, std::move(mesh));
+  }
+  // In material order, primitives without a material (key -1, first in the map) last.
+  if (out.parts.size() > 1 && out.parts.front().first < 0) {
+    std::rotate(out.parts.begin(), out.parts.begin() + 1, out.parts.end());
+  }
+  return out;
+}
+
+Result<MeshShape> read_gltf(const std::filesystem::path& path) {
+  auto read = read_gltf_parts(path, false);
+  if (!read) return read.error();
+  return std::move(read->parts.front().second);
+}
+
+
+// ---- glTF materials (pbrMetallicRoughness, glTF 2.0 section 3.9.2) ------------------------------------------
+
+// A field error: thrown inside read_gltf_materials, caught there and turned into one line naming the pointer.
+struct GltfFieldError {
+  std::string pointer;
+  std::string message;
+};
+
+std::string describe_json(const nlohmann::json& v) { return printable(v.dump(), 40); }
+
+const nlohmann::json* member(const nlohmann::json& object, const char* key) {
+  if (!object.is_object()) return nullptr;
+  const auto it = object.find(key);
+  return it == object.end() ? nullptr : &*it;
+}
+
+// An element of a top-level array ("materials", "textures", "images"), or an error naming it.
+const nlohmann::json& top_element(const nlohmann::json& doc, const char* array, long long index,
+                                  const std::string& referrer) {
+  const nlohmann::json* a = member(doc, array);
+  if (index < 0 || a == nullptr || !a->is_array() || static_cast<std::size_t>(index) >= a->size()) {
+    throw GltfFieldError{referrer, "refers to " + std::string(array) + " " + std::to_string(index) +
+                                       ", which does not exist"};
+  }
+  const nlohmann::json& e = (*a)[static_cast<std::size_t>(index)];
+  if (!e.is_object()) {
+    throw GltfFieldError{"/" + std::string(array) + "/" + std::to_string(index), "expected an object, got " + describe_json(e)};
+  }
+  return e;
+}
+
+double unit_number(const nlohmann::json& v, const std::string& pointer) {
+  // glTF 2.0 schema: metallicFactor, roughnessFactor and the baseColorFactor components lie in [0, 1].
+  if (!v.is_number() || !(v.get<double>() >= 0.0 && v.get<double>() <= 1.0)) {
+    throw GltfFieldError{pointer, "expected a number in [0, 1], got " + describe_json(v)};
+  }
+  return v.get<double>();
+}
+
+long long index_value(const nlohmann::json& v, const std::string& pointer) {
+  if (!v.is_number_integer() && !v.is_number_unsigned()) {
+    throw GltfFieldError{pointer, "expected an integer index, got " + describe_json(v)};
+  }
+  if (v.is_number_unsigned() && v.get<std::uint64_t>() > 0x7fffffffULL) return 0x7fffffffLL;
+  return v.get<long long>();
+}
+
+// %XX escapes of a URI reference (RFC 3986 2.1); the rest as written.
+std::string percent_decoded(const std::string& uri, const std::string& pointer) {
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] != '%') {
+      out += uri[i];
+      continue;
+    }
+    if (i + 2 >= uri.size() || !std::isxdigit(static_cast<unsigned char>(uri[i + 1])) ||
+        !std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      throw GltfFieldError{pointer, "malformed percent escape in '" + printable(uri) + "'"};
+    }
+    out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+    i += 2;
+  }
+  return out;
+}
+
+// A textureInfo (baseColorTexture, metallicRoughnessTexture): the image file its texture's source names.
+std::filesystem::path texture_image(const nlohmann::json& doc, const nlohmann::json& info, const std::string& pointer,
+                                    const std::filesystem::path& root) {
+  if (!info.is_object()) throw GltfFieldError{pointer, "expected a textureInfo object, got " + describe_json(info)};
+  const nlohmann::json* index = member(info, "index");
+  if (index == nullptr) throw GltfFieldError{pointer + "/index", "required key is missing"};
+  const long long t = index_value(*index, pointer + "/index");
+  if (const nlohmann::json* tc = member(info, "texCoord")) {
+    if (index_value(*tc, pointer + "/texCoord") != 0) {
+      throw GltfFieldError{pointer + "/texCoord", "only TEXCOORD_0 is supported, got " + describe_json(*tc)};
+    }
+  }
+  const nlohmann::json& texture = top_element(doc, "textures", t, pointer + "/index");
+  const std::string tp = "/textures/" + std::to_string(t);
+  const nlohmann::json* source = member(texture, "source");
+  if (source == nullptr) {
+    throw GltfFieldError{tp, "has no 'source' image (images of extensions such as KHR_texture_basisu are not supported)"};
+  }
+  const long long i = index_value(*source, tp + "/source");
+  const nlohmann::json& image = top_element(doc, "images", i, tp + "/source");
+  const std::string ip = "/images/" + std::to_string(i);
+  const nlohmann::json* uri = member(image, "uri");
+  if (uri == nullptr || member(image, "bufferView") != nullptr) {
+    throw GltfFieldError{ip, "embedded images (bufferView) are not supported; give the image as a file 'uri'"};
+  }
+  if (!uri->is_string()) throw GltfFieldError{ip + "/uri", "expected a string, got " + describe_json(*uri)};
+  const std::string text = uri->get<std::string>();
+  if (text.rfind("data:", 0) == 0) {
+    throw GltfFieldError{ip + "/uri", "embedded images (data: URIs) are not supported; give the image as a file"};
+  }
+  const std::filesystem::path file = root / std::filesystem::path(percent_decoded(text, ip + "/uri"));
+  if (!inside_tree(root, file)) throw GltfFieldError{ip + "/uri", "'" + printable(text) + "' is outside the glTF file's folder"};
+  if (const std::string why = check_file(file, max_mesh_file_bytes); !why.empty()) {
+    throw GltfFieldError{ip + "/uri", "'" + printable(file.string()) + "': " + why};
+  }
+  return file;
+}
+
+// Material `index` of the document (-1: the glTF default material, section 3.9.1).
+GltfMaterial read_gltf_material(const nlohmann::json& doc, int index, const std::filesystem::path& root) {
+  GltfMaterial m;
+  if (index < 0) {
+    m.pointer = "(default material)";
+    return m;
+  }
+  m.pointer = "/materials/" + std::to_string(index);
+  const nlohmann::json& material = top_element(doc, "materials", index, m.pointer);
+  if (const nlohmann::json* name = member(material, "name")) {
+    if (!name->is_string()) throw GltfFieldError{m.pointer + "/name", "expected a string, got " + describe_json(*name)};
+    m.name = printable(name->get<std::string>());
+  }
+  const nlohmann::json* pbr = member(material, "pbrMetallicRoughness");
+  if (pbr == nullptr) return m;
+  const std::string pp = m.pointer + "/pbrMetallicRoughness";
+  if (!pbr->is_object()) throw GltfFieldError{pp, "expected an object, got " + describe_json(*pbr)};
+  if (const nlohmann::json* f = member(*pbr, "baseColorFactor")) {
+    if (!f->is_array() || f->size() != 4) {
+      throw GltfFieldError{pp + "/baseColorFactor", "expected [r, g, b, a], got " + describe_json(*f)};
+    }
+    for (std::size_t c = 0; c < 4; ++c) {
+      const double v = unit_number((*f)[c], pp + "/baseColorFactor/" + std::to_string(c));
+      if (c < 3) m.base_color[c] = v;
+    }
+  }
+  if (const nlohmann::json* f = member(*pbr, "metallicFactor")) m.metallic = unit_number(*f, pp + "/metallicFactor");
+  if (const nlohmann::json* f = member(*pbr, "roughnessFactor")) m.roughness = unit_number(*f, pp + "/roughnessFactor");
+  if (const nlohmann::json* t = member(*pbr, "baseColorTexture")) {
+    m.base_color_image = texture_image(doc, *t, pp + "/baseColorTexture", root);
+  }
+  if (const nlohmann::json* t = member(*pbr, "metallicRoughnessTexture")) {
+    m.metallic_roughness_image = texture_image(doc, *t, pp + "/metallicRoughnessTexture", root);
+  }
+  return m;
+}
+
+Result<GltfScene> read_gltf_scene(const std::filesystem::path& path) {
+  auto read = read_gltf_parts(path, true);
+  if (!read) return read.error();
+  const nlohmann::json doc = nlohmann::json::parse(read->json_text, nullptr, false);
+  if (doc.is_discarded()) return mesh_error(path, "cannot read glTF: malformed JSON");
+  const std::filesystem::path root = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  GltfScene scene;
+  try {
+    // Every material of the file is checked, used or not; the parts keep the ones they use, in file order.
+    const nlohmann::json* materials = member(doc, "materials");
+    if (materials != nullptr && !materials->is_array()) {
+      throw GltfFieldError{"/materials", "expected an array, got " + describe_json(*materials)};
+    }
+    std::vector<GltfMaterial> all;
+    for (std::size_t i = 0; materials != nullptr && i < materials->size(); ++i) {
+      all.push_back(read_gltf_material(doc, static_cast<int>(i), root));
+    }
+    for (auto& [key, mesh] : read->parts) {
+      GltfMaterial m = key >= 0 ? all[static_cast<std::size_t>(key)] : read_gltf_material(doc, -1, root);
+      if ((!m.base_color_image.empty() || !m.metallic_roughness_image.empty()) && mesh.uvs.empty()) {
+        throw GltfFieldError{m.pointer, "has textures, but the primitives that use it have no TEXCOORD_0"};
+      }
+      mesh.material = static_cast<int>(scene.materials.size());
+      scene.materials.push_back(std::move(m));
+      scene.parts.push_back(std::move(mesh));
+    }
+  } catch (const GltfFieldError& e) {
+    return mesh_error(path, e.pointer + ": " + e.message);
+  }
+  return scene;
 }
 
 // Allocation failures (the file's sizes are checked, but memory may still run out) become errors.
@@ -758,6 +972,16 @@ Result<MeshShape> guarded(const std::filesystem::path& path, Result<MeshShape> (
 
 Result<MeshShape> load_obj(const std::filesystem::path& path) { return guarded(path, read_obj); }
 Result<MeshShape> load_gltf(const std::filesystem::path& path) { return guarded(path, read_gltf); }
+
+Result<GltfScene> load_gltf_scene(const std::filesystem::path& path) {
+  try {
+    return read_gltf_scene(path);
+  } catch (const std::bad_alloc&) {
+    return mesh_error(path, "out of memory while reading the mesh");
+  } catch (const std::length_error&) {
+    return mesh_error(path, "out of memory while reading the mesh");
+  }
+}
 
 Result<MeshShape> load_mesh(const std::filesystem::path& path) {
   const std::string ext = lower_extension(path);

@@ -25,9 +25,19 @@
 //   triangles; accessor bounds are checked without overflow; the node hierarchy is visited without
 //   recursion. Running out of memory is an error, not an exception.
 // - MeshShape::source is the path as given; material is 0.
+// - load_gltf_scene: the same triangles, one MeshShape per glTF material its primitives use (MeshShape::material
+//   indexes GltfScene::materials), with each material's pbrMetallicRoughness read and checked: factors in
+//   [0, 1], baseColorFactor four numbers, textures through textures[].source to images[].uri files inside the
+//   glTF's folder tree, texCoord 0 only. Embedded images (bufferView, data: URIs) are refused. Every material of
+//   the file is checked, used or not; an error is one line: the file, the JSON pointer of the field, why.
+//   Not read (docs/scene-format.md, "glTF materials"): normal, occlusion and emissive textures, emissiveFactor,
+//   alphaMode, doubleSided, samplers (lookups are bilinear and repeat) and every extension.
 #pragma once
 
+#include <array>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "shadelab/core/error.h"
 #include "shadelab/core/mat3.h"
@@ -39,6 +49,26 @@ namespace shadelab {
 Result<MeshShape> load_mesh(const std::filesystem::path& path);
 Result<MeshShape> load_obj(const std::filesystem::path& path);
 Result<MeshShape> load_gltf(const std::filesystem::path& path);  // .gltf (JSON) or .glb (binary)
+
+// A glTF material's pbrMetallicRoughness (glTF 2.0, section 3.9.2); the defaults are the spec's.
+struct GltfMaterial {
+  std::string name;     // the material's "name", or ""
+  std::string pointer;  // "/materials/N", or "(default material)" for primitives without one (section 3.9.1)
+  std::array<double, 3> base_color{1.0, 1.0, 1.0};  // baseColorFactor's r, g, b (its alpha is not used)
+  double metallic = 1.0;                           // metallicFactor
+  double roughness = 1.0;                          // roughnessFactor (perceptual roughness)
+  std::filesystem::path base_color_image;          // baseColorTexture's image file (sRGB colour), or empty
+  std::filesystem::path metallic_roughness_image;  // metallicRoughnessTexture's image file (data: G, B), or empty
+};
+
+struct GltfScene {
+  // One per material used, in the file's material order, primitives without a material last;
+  // MeshShape::material indexes `materials`.
+  std::vector<MeshShape> parts;
+  std::vector<GltfMaterial> materials;   // one per part, in the order of the parts
+};
+
+Result<GltfScene> load_gltf_scene(const std::filesystem::path& path);
 
 // An affine map p -> linear p + translate. Normals go through the inverse transpose of `linear` and are
 // renormalized; a mirroring map (det < 0) reverses the triangles' winding. `linear` must be invertible.

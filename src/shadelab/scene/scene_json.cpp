@@ -441,12 +441,22 @@ class Parser {
     if (has_file) {
       const Object o(node, {"file", "data"}, "a file texture");
       const std::filesystem::path path = file(o.require("file"));
-      t.data = o.has("data") && boolean(*o.get("data"));
+      read_file_texture(t, path, o.has("data") && boolean(*o.get("data")),
+                        Node(o.node().value().at("file"), o.node().child_pointer("file")));
+      return t;
+    }
+    return procedural_texture(node, t);
+  }
+
+  // A texture from an image file; errors name `where` (a scene field).
+  void read_file_texture(Texture& t, const std::filesystem::path& path, bool data, const Node& where) {
+    {
+      t.data = data;
       t.source = path.string();
       ReadInfo info;
       auto image = read_budgeted(path, &info);
-      if (!image) throw Failure{o.node().child_pointer("file"), image.error().message};
-      charge_image(Node(o.node().value().at("file"), o.node().child_pointer("file")), image->pixel_count() * 12);
+      if (!image) where.fail(image.error().message);
+      charge_image(where, image->pixel_count() * 12);
       t.image = std::move(image).value();
       if (t.data && info.format == "png") {
         // read_image decoded the PNG as sRGB colour; a data texture holds the stored code / max code.
@@ -456,8 +466,10 @@ class Parser {
           v = static_cast<float>(std::round(linear_to_srgb(static_cast<double>(v)) * max_code) / max_code);
         }
       }
-      return t;
     }
+  }
+
+  Texture procedural_texture(const Node& node, Texture& t) {
     const std::string kind = word(Node(node.value().at("procedural"), node.child_pointer("procedural")),
                                   {"asphalt-diffuse", "asphalt-gloss", "checker"});
     const int default_size = kind == "checker" ? 256 : 512;
@@ -713,22 +725,82 @@ class Parser {
       const std::filesystem::path path = file(file_node);
       MeshTransform xf;
       if (auto n = o.get("transform")) xf = parse_transform(*n);
-      const int material = material_ref(o.require("material"));
-      auto cached = m_meshes.find(path.string());
-      if (cached == m_meshes.end()) {
-        auto loaded = load_mesh(path);
-        if (!loaded) file_node.fail(loaded.error().message);
-        cached = m_meshes.emplace(path.string(), std::move(loaded).value()).first;
+      std::string ext = path.extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      const std::vector<MeshShape>* instances = nullptr;
+      if (o.has("material") || (ext != ".gltf" && ext != ".glb")) {
+        // The shape's material for every triangle.
+        const int material = material_ref(o.require("material"));
+        auto cached = m_meshes.find(path.string());
+        if (cached == m_meshes.end()) {
+          auto loaded = load_mesh(path);
+          if (!loaded) file_node.fail(loaded.error().message);
+          cached = m_meshes.emplace(path.string(), std::vector<MeshShape>{std::move(loaded).value()}).first;
+        }
+        cached->second.front().material = material;
+        instances = &cached->second;
+      } else {
+        instances = &gltf_import(file_node, path);  // the file's own materials
       }
+      for (const MeshShape& instance : *instances) add_mesh(o, file_node, path, xf, instance);
+    }
+  }
+
+  // A glTF file's meshes with its pbrMetallicRoughness materials, mapped to `filament` (docs/scene-format.md,
+  // "glTF materials"); read once per file, its materials and textures added to the scene once.
+  const std::vector<MeshShape>& gltf_import(const Node& file_node, const std::filesystem::path& path) {
+    if (auto it = m_gltf.find(path.string()); it != m_gltf.end()) return it->second;
+    auto loaded = load_gltf_scene(path);
+    if (!loaded) file_node.fail(loaded.error().message);
+    std::vector<MeshShape> parts = std::move(loaded->parts);
+    for (MeshShape& part : parts) {
+      const GltfMaterial& g = loaded->materials[static_cast<std::size_t>(part.material)];
+      Material m;
+      m.name = path.string() + "#" + g.pointer + (g.name.empty() ? "" : " (" + g.name + ")");
+      m.model = "filament";
+      // glTF's dielectric F0 = 0.04 is Filament's reflectance 0.5 (0.16 x 0.5^2); perceptual_roughness starts at
+      // 0.01 (filament.cpp), so a roughnessFactor below 0.01 becomes 0.01.
+      m.params = {{"base_color", exact_number(g.base_color[0]) + "," + exact_number(g.base_color[1]) + "," +
+                                     exact_number(g.base_color[2])},
+                  {"metallic", exact_number(g.metallic)},
+                  {"perceptual_roughness", exact_number(std::max(g.roughness, 0.01))},
+                  {"reflectance", "0.5"},
+                  {"diffuse", "lambert"},
+                  {"energy_compensation", "on"}};
+      auto brdf = make_brdf(m.model, m.params);
+      if (!brdf) file_node.fail(path.string() + ": " + g.pointer + ": " + brdf.error().message);
+      m.brdf = std::shared_ptr<const Brdf>(std::move(brdf).value());
+      auto texture = [&](const std::filesystem::path& image, bool data) {
+        const std::string name = image.string() + (data ? " (data)" : " (colour)");
+        if (auto it = m_gltf_textures.find(name); it != m_gltf_textures.end()) return it->second;
+        Texture t;
+        t.name = name;
+        read_file_texture(t, image, data, file_node);
+        const int index = static_cast<int>(m_scene.textures.size());
+        m_scene.textures.push_back(std::move(t));
+        m_gltf_textures.emplace(name, index);
+        return index;
+      };
+      if (!g.base_color_image.empty()) m.base_color_texture = texture(g.base_color_image, false);
+      if (!g.metallic_roughness_image.empty()) m.metallic_roughness_texture = texture(g.metallic_roughness_image, true);
+      part.material = static_cast<int>(m_scene.materials.size());
+      m_scene.materials.push_back(std::move(m));
+    }
+    return m_gltf.emplace(path.string(), std::move(parts)).first->second;
+  }
+
+  void add_mesh(const Object& o, const Node& file_node, const std::filesystem::path& path, const MeshTransform& xf,
+                const MeshShape& instance) {
+    {
       // Bound the scene's triangles before copying another instance (scene/limits.h).
-      const std::uint64_t triangles = cached->second.indices.size() / 3;
+      const std::uint64_t triangles = instance.indices.size() / 3;
       if (m_triangles + triangles > max_scene_triangles) {
         file_node.fail("this mesh's " + std::to_string(triangles) + " triangles bring the scene to " +
                        std::to_string(m_triangles + triangles) + ", above the limit of " +
                        std::to_string(max_scene_triangles));
       }
       m_triangles += triangles;
-      MeshShape mesh = cached->second;
+      MeshShape mesh = instance;
       transform_mesh(mesh, xf);
       for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
         const Vec3& p = mesh.positions[i];
@@ -739,7 +811,6 @@ class Parser {
                             "' is beyond +-" + format_number(max_scene_coordinate) + " after the transform"};
         }
       }
-      mesh.material = material;
       m_scene.meshes.push_back(std::move(mesh));
     }
   }
@@ -948,7 +1019,9 @@ class Parser {
   Units m_units = Units::game;
   std::map<std::string, int, std::less<>> m_texture_index;
   std::map<std::string, int, std::less<>> m_material_index;
-  std::map<std::string, MeshShape> m_meshes;  // each mesh file read once, by resolved path
+  std::map<std::string, std::vector<MeshShape>> m_meshes;  // each mesh file read once, by resolved path
+  std::map<std::string, std::vector<MeshShape>> m_gltf;    // glTF files with their own materials, by path
+  std::map<std::string, int> m_gltf_textures;              // their textures, by image file and kind
   std::uint64_t m_triangles = 0;              // of all mesh instances so far
   std::uint64_t m_image_bytes = 0;            // of all textures and the environment map so far
 
