@@ -5,14 +5,18 @@ Each mutant is one small change to one line of src/shadelab/brdf/*.cpp, src/shad
 BRDF kernels (src/shadelab/kernels/*.sl, which brdf/ calls): an arithmetic operator swapped (+ -, * /), a
 comparison loosened or tightened, a numeric constant changed, or one of the named mutants below (the two
 injected bugs that once survived the suite). For every mutant the script applies it, rebuilds the tests
-of its module (ci preset, build/ci), runs them, and restores the file. A mutant is killed when a test fails
+of its module (ci preset, build/ci), runs them, and restores the file: a brdf mutant first meets the brdf
+tests, then the analysis checks of the models its file serves (analysis_filter), an envmap mutant the
+envmap tests, each binary stopping the mutant's run at its first failure. A mutant is killed when a test fails
 (or hangs past the timeout), survives when every test passes, and is stillborn (not counted) when it does
 not compile. Each mutant holds the CPU lock (/tmp/shadelab-cpu.lock, scripts/test.sh's machine-sharing
 convention) only for its own build and run, so other work interleaves.
 
 Usage (from the repository root, after a ci build):
   /usr/bin/python3 scripts/mutate.py [--count N] [--seed S] [--only brdf|envmap] [--list] [--named-only]
-The sites are enumerated deterministically; --count N picks N of them with a fixed seed (default: all).
+                                     [--range FIRST:LAST]
+The sites are enumerated deterministically; --count N picks N of them with a fixed seed (default: all);
+--range runs a part of that list (1-based, inclusive), so a pass can be split over several sittings.
 Exit code: 0 always after a complete pass (the score is a measurement, not a gate); 2 on bad usage.
 """
 import argparse
@@ -34,16 +38,19 @@ TIMEOUT = 300  # seconds for one mutant's tests: a hang is a kill
 MODULES = {
     "brdf": {
         "globs": [("src/shadelab/brdf", ".cpp"), ("src/shadelab/kernels", ".sl")],
-        "skip_files": {"registry.cpp", "params.cpp", "game_shading.sl", "sh9.sl", "sl.h", "kernels.h"},
+        "skip_files": {"registry.cpp", "params.cpp", "game_shading.sl", "sh9.sl", "display.sl", "game_ambient.sl"},
         "targets": ["shadelab_brdf_tests", "shadelab_analysis_tests"],
-        "binaries": ["src/shadelab/shadelab_brdf_tests", "src/shadelab/shadelab_analysis_tests"],
+        # The module's tests first (1 s); then, for a survivor, the analysis checks of the models the file
+        # serves (analysis_filter: the whole analysis binary takes about 400 s on one core).
+        "binaries": [("src/shadelab/shadelab_brdf_tests", None),
+                     ("src/shadelab/shadelab_analysis_tests", "analysis")],
     },
     "envmap": {
         "globs": [("src/shadelab/envmap", ".cpp"), ("src/shadelab/kernels", ".sl")],
         "only_files": {"sh9.sl"},  # of the kernels: the SH evaluation envmap uses
         "skip_files": set(),
         "targets": ["shadelab_envmap_tests"],
-        "binaries": ["src/shadelab/shadelab_envmap_tests"],
+        "binaries": [("src/shadelab/shadelab_envmap_tests", None)],
     },
 }
 
@@ -54,21 +61,18 @@ NAMED = [
     ("brdf", "src/shadelab/kernels/cook_torrance.sl", None, None, "default Smith G at twice the roughness"),
 ]
 
-OPERATORS = [
-    (re.compile(r"(?<=[\w)\]]) \+ (?=[\w(])"), " - ", "+ -> -"),
-    (re.compile(r"(?<=[\w)\]]) - (?=[\w(])"), " + ", "- -> +"),
-    (re.compile(r"(?<=[\w)\]]) \* (?=[\w(])"), " / ", "* -> /"),
-    (re.compile(r"(?<=[\w)\]]) / (?=[\w(])"), " * ", "/ -> *"),
-    (re.compile(r" < (?=[\w(])"), " <= ", "< -> <="),
-    (re.compile(r" > (?=[\w(])"), " >= ", "> -> >="),
-    (re.compile(r" <= "), " < ", "<= -> <"),
-    (re.compile(r" >= "), " > ", ">= -> >"),
-    (re.compile(r"(?<![\w.])2\.0(?![\w.])"), "1.0", "2.0 -> 1.0"),
-    (re.compile(r"(?<![\w.])1\.0(?![\w.])"), "2.0", "1.0 -> 2.0"),
-    (re.compile(r"(?<![\w.])0\.5(?![\w.])"), "0.25", "0.5 -> 0.25"),
-    (re.compile(r"(?<![\w.])4\.0(?![\w.])"), "2.0", "4.0 -> 2.0"),
-    (re.compile(r"\bpi\b(?!\s*\()"), "(2.0 * pi)", "pi -> 2 pi"),
-]
+# The operator mutants, each written once: (text, replacement) pairs of one shape per group.
+_BINARY = [("+", "-"), ("-", "+"), ("*", "/"), ("/", "*")]   # between two operands
+_COMPARE = [("<", "<="), (">", ">=")]                         # tightened or loosened
+_COMPARE_EQ = [("<=", "<"), (">=", ">")]
+_CONSTANTS = [("2.0", "1.0"), ("1.0", "2.0"), ("0.5", "0.25"), ("4.0", "2.0")]
+OPERATORS = (
+    [(re.compile(r"(?<=[\w)\]]) " + re.escape(a) + r" (?=[\w(])"), f" {b} ", f"{a} -> {b}") for a, b in _BINARY]
+    + [(re.compile(" " + a + r" (?=[\w(])"), f" {b} ", f"{a} -> {b}") for a, b in _COMPARE]
+    + [(re.compile(" " + a + " "), f" {b} ", f"{a} -> {b}") for a, b in _COMPARE_EQ]
+    + [(re.compile(r"(?<![\w.])" + re.escape(a) + r"(?![\w.])"), b, f"{a} -> {b}") for a, b in _CONSTANTS]
+    + [(re.compile(r"\bpi\b(?!\s*\()"), "(2.0 * pi)", "pi -> 2 pi")]
+)
 
 
 def code_part(line):
@@ -105,8 +109,6 @@ def sites(module):
                 continue
             if ext == ".sl" and "only_files" in cfg and name not in cfg["only_files"]:
                 continue
-            if ext == ".sl" and module == "brdf" and name in ("game_shading.sl", "sh9.sl"):
-                continue
             rel = os.path.join(folder, name)
             with open(os.path.join(ROOT, rel)) as f:
                 lines = f.read().split("\n")
@@ -119,6 +121,23 @@ def sites(module):
                         new = line[: m.start()] + repl + line[m.end():]
                         found.append((module, rel, i, line, new, label))
     return found
+
+
+# Files that serve several models (or none of the registry's) are judged by every model's defaults set.
+SHARED = {"microfacet", "fresnel", "fresnel_materials", "common", "layered", "gloss", "game_lobe", "params"}
+
+
+def analysis_filter(rel):
+    """The gtest filter of the analysis checks that judge a mutant of file rel: the Registry/Models sets of the
+    model the file implements (its stem is the model's name), the GGX suites for GGX files, the zoo for the
+    Phong family; for a shared file the defaults set of every model and the check and albedo suites."""
+    stem = os.path.splitext(os.path.basename(rel))[0]
+    if stem in SHARED:
+        return "Registry/Models.*_defaults:Check.*:Albedo.*"
+    if stem.startswith("ggx"):
+        return "Registry/Models.*/ggx_*:Ggx*"
+    extra = ":Zoo.*:Albedo.*" if stem in ("phong", "blinn_phong") else ""
+    return f"Registry/Models.*/{stem}_*" + extra
 
 
 def run(cmd, timeout=None):
@@ -145,10 +164,13 @@ def judge(module, rel, index, new_line):
             code, out = run(["cmake", "--build", BUILD, "-j2", "--target"] + cfg["targets"])
             if code != 0:
                 return "stillborn", ""
-            for b in cfg["binaries"]:
-                code, out = run([os.path.join(BUILD, b), "--gtest_brief=1"], timeout=TIMEOUT)
+            for b, which in cfg["binaries"]:
+                args = [os.path.join(BUILD, b), "--gtest_brief=1"]
+                if which == "analysis":
+                    args.append("--gtest_filter=" + analysis_filter(rel))
+                code, out = run(args, timeout=TIMEOUT)
                 if code != 0:
-                    failed = re.findall(r"\[  FAILED  \] (\S+)", out)
+                    failed = re.findall(r"\[  FAILED  \] ([^\s,]+)", out)
                     return "killed", (failed[0] if failed else ("timeout" if code == 124 else f"exit {code}"))
             return "survived", ""
         finally:
@@ -164,6 +186,7 @@ def main():
     ap.add_argument("--only", choices=sorted(MODULES))
     ap.add_argument("--list", action="store_true")
     ap.add_argument("--named-only", action="store_true")
+    ap.add_argument("--range", default="", help="FIRST:LAST, 1-based, of the chosen list: a pass in parts")
     a = ap.parse_args()
     modules = [a.only] if a.only else sorted(MODULES)
     chosen = []
@@ -199,9 +222,18 @@ def main():
             print(f"{rel}:{i + 1}: {label}: {new.strip()}")
         print(f"{len(chosen)} mutants")
         return 0
+    first, last = 1, len(chosen)
+    if a.range:
+        m = re.fullmatch(r"(\d+):(\d+)", a.range)
+        if not m or not 1 <= int(m.group(1)) <= int(m.group(2)):
+            print(f"--range: expected FIRST:LAST with 1 <= FIRST <= LAST, got '{a.range}'", file=sys.stderr)
+            return 2
+        first, last = int(m.group(1)), min(int(m.group(2)), len(chosen))
     tally = {"killed": 0, "survived": 0, "stillborn": 0}
     start = time.time()
     for k, (module, rel, i, line, new, label) in enumerate(chosen):
+        if not first <= k + 1 <= last:
+            continue
         verdict, by = judge(module, rel, i, new)
         tally[verdict] += 1
         print(f"[{k + 1}/{len(chosen)}] {verdict:9s} {rel}:{i + 1}: {label}: {new.strip()}" + (f"  ({by})" if by else ""),

@@ -227,7 +227,8 @@ TEST(Ggx, FresnelAverages) {
   o.rel_tol = 1e-12;
   const double schlick = integrate([](double mu) { return 2.0 * mu * ref_schlick(mu, 0.3); }, 0.0, 1.0, o).value;
   EXPECT_NEAR(schlick, (20.0 * 0.3 + 1.0) / 21.0, 1e-12);
-  for (const auto& [n, k] : {std::pair{1.5, 0.0}, std::pair{0.27, 3.4}, std::pair{1.1, 6.9}}) {
+  for (const auto& nk : {std::pair{1.5, 0.0}, std::pair{0.27, 3.4}, std::pair{1.1, 6.9}}) {
+    const double n = nk.first, k = nk.second;  // not a structured binding: clang 14 cannot capture those
     const double exact = integrate([&](double mu) { return 2.0 * mu * F_conductor(mu, n, k); }, 0.0, 1.0, o).value;
     const kernel::rgb avg = kernel::F_average_by_kind_rgb(k == 0.0 ? kernel::FRESNEL_DIELECTRIC : kernel::FRESNEL_CONDUCTOR,
                                                           kernel::rgb(n), kernel::rgb(k), kernel::rgb(0.0));

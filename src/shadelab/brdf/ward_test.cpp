@@ -52,5 +52,18 @@ TEST(Ward, EfficientExponentAgreesOnlyNearTheNormal) {
   EXPECT_GT(std::abs(efficient(far) - w.slope_term(far)), 0.1 * w.slope_term(far));
 }
 
+TEST(Ward, PdfIsZeroWhereTheHalfVectorLiesInTheTangentPlane) {
+  // Walter 2005's density of h is zero for h.z <= 0, and the cosine lobe's is zero below the horizon: a wi
+  // mirrored below the surface (wi.z = -wo.z, so h.z = 0 exactly) has pdf 0, not 0 / 0.
+  for (const char* model : {"ward", "ward-anisotropic"}) {
+    const auto f = testing::make(model);
+    ASSERT_TRUE(f);
+    const Vec3 wo{0.6, 0.0, 0.8};
+    const Vec3 wi{0.6, 0.0, -0.8};
+    EXPECT_EQ(f->pdf(wi, wo), 0.0) << model;
+    EXPECT_EQ(f->pdf(Vec3{0.0, 0.28, -0.96}, Vec3{0.0, 0.28, 0.96}), 0.0) << model;
+  }
+}
+
 }  // namespace
 }  // namespace shadelab

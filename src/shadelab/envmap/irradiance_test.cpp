@@ -93,5 +93,30 @@ TEST(Irradiance, SameResultWhateverTheSplit) {
   EXPECT_EQ(ll.height, 8);
 }
 
+TEST(Irradiance, LatLongDownsamplingIsTheSolidAngleWeightedMeanOfEachTexelsFourChildren) {
+  // Row y of a W x H lat-long map subtends (2 pi / W)(cos(pi y / H) - cos(pi (y + 1) / H)) per texel (written
+  // again here); an output texel is the flux of its 2 x 2 children over its own solid angle. Every texel
+  // differs, so reading a wrong child shows.
+  const int w = 16, h = 8;
+  Image ll(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      ll.set(x, y, Rgb{1.0 + x + 17.0 * y, 1.0 + (x * 7 + y * 3) % 11, 0.5 + 0.25 * ((x + y) % 2)});
+  const Image half = downsample_latlong(ll);
+  ASSERT_EQ(half.width, w / 2);
+  ASSERT_EQ(half.height, h / 2);
+  auto omega = [](int y, int width, int height) {
+    return 2.0 * pi / width * (std::cos(pi * y / height) - std::cos(pi * (y + 1) / height));
+  };
+  for (int y = 0; y < h / 2; ++y)
+    for (int x = 0; x < w / 2; ++x) {
+      Rgb flux;
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) flux = flux + ll.at(2 * x + dx, 2 * y + dy) * omega(2 * y + dy, w, h);
+      const Rgb expected = flux / omega(y, w / 2, h / 2);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(half.at(x, y)[c], expected[c], 1e-6 * expected[c]) << x << " " << y;
+    }
+}
+
 }  // namespace
 }  // namespace shadelab
