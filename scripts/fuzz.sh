@@ -7,6 +7,9 @@
 # fuzz/regressions/<harness>/<kind>-<sha1> (the ordinary test suite replays that folder), printed in
 # base64 so a CI log carries it, and the script exits with 1 after the other harnesses ran.
 # New inputs the fuzzer finds interesting go to build/sanitize/fuzz-corpus/<harness> (not committed).
+# FUZZ_SEED (default 1) is libFuzzer's -seed: with the same seed, corpus and code a run takes the same path, so
+# a CI finding reproduces and a clean local run of at least CI's length means CI meets nothing new there.
+# FUZZ_SEED=0 draws a seed (libFuzzer's default): the way to search beyond that path (docs/testing.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-30}
@@ -15,6 +18,7 @@ all=(scene obj gltf glb exr hdr png ktx cli)
 harnesses=("$@")
 [ ${#harnesses[@]} -eq 0 ] && harnesses=("${all[@]}")
 jobs=${FUZZ_JOBS:-$(nproc 2>/dev/null || echo 2)}
+seed=${FUZZ_SEED:-1}
 
 [ -f build/sanitize/build.ninja ] || cmake --preset sanitize >/dev/null
 targets=()
@@ -27,19 +31,19 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:allocator_may_return_null=0
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 run_one() {
-  local h=$1 seconds=$2 logs=$3
+  local h=$1 seconds=$2 logs=$3 seed=$4
   local corpus=build/sanitize/fuzz-corpus/$h
   mkdir -p "$corpus" "fuzz/regressions/$h"
   local dict=()
   [ -f "fuzz/dict/$h.dict" ] && dict=("-dict=$PWD/fuzz/dict/$h.dict")
   local start=$SECONDS
-  if "build/sanitize/fuzz/fuzz_$h" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=3072 \
+  if "build/sanitize/fuzz/fuzz_$h" -max_total_time="$seconds" -seed="$seed" -timeout=10 -rss_limit_mb=3072 \
       -malloc_limit_mb=2048 -max_len=65536 -print_final_stats=1 "${dict[@]}" \
       -artifact_prefix="$PWD/fuzz/regressions/$h/" "$PWD/$corpus" "$PWD/fuzz/corpus/$h" "$PWD/fuzz/regressions/$h" \
       >"$logs/$h.log" 2>&1; then
     local execs
     execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$logs/$h.log" | grep -o '[0-9]*$' || echo "?")
-    echo "fuzz $h: ok, $execs runs in $((SECONDS - start)) s, corpus $(ls "$corpus" | wc -l) inputs"
+    echo "fuzz $h: ok, $execs runs in $((SECONDS - start)) s (seed $seed), corpus $(ls "$corpus" | wc -l) inputs"
   else
     echo "fuzz $h: FINDING (log: $logs/$h.log)"
     grep -E "ERROR|SUMMARY|finding|runtime error|Test unit written" "$logs/$h.log" | head -20 | sed 's/^/  /'
@@ -54,7 +58,7 @@ run_one() {
 export -f run_one
 
 status=0
-printf '%s\n' "${harnesses[@]}" | xargs -P "$jobs" -I{} bash -c 'run_one "$@"' _ {} "$seconds" "$logs" || status=1
+printf '%s\n' "${harnesses[@]}" | xargs -P "$jobs" -I{} bash -c 'run_one "$@"' _ {} "$seconds" "$logs" "$seed" || status=1
 if [ $status -ne 0 ]; then
   echo "fuzz: findings above; each input is saved under fuzz/regressions/ (commit it with the fix)"
 fi

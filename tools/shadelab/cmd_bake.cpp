@@ -301,6 +301,20 @@ nlohmann::json ggx_mip_mapping_json(const GgxPrefilteredCube& chain) {
           {"roughness", chain.roughness}};
 }
 
+namespace {
+
+// The "units" and "convention" of every `bake sh` JSON (sh9_json, sh_bands_json).
+const char* sh_units_name(RadianceUnits units) { return units == RadianceUnits::game ? "game" : "radiometric"; }
+
+const char* sh_convention_text(RadianceUnits units) {
+  return units == RadianceUnits::game
+             ? "irradiance_coefficients give E/pi = sum_i c_i Y_i(n): multiply by kd for the diffuse exit radiance "
+               "(game units, no pi)"
+             : "irradiance_coefficients give E = sum_i c_i Y_i(n) in W/m^2 per unit of radiance";
+}
+
+}  // namespace
+
 nlohmann::json sh9_json(const Sh9& sh, RadianceUnits units, ShWindow window, const std::string& window_name,
                         const nlohmann::json& lights, const std::string& light_normalization) {
   const BandFactors w = sh_window_factors(window);
@@ -317,11 +331,8 @@ nlohmann::json sh9_json(const Sh9& sh, RadianceUnits units, ShWindow window, con
       {"order", 3},
       {"basis", "real SH, Condon-Shortley phase, z polar axis, Sloan 2008 order: Y00, Y1-1, Y10, Y11, Y2-2, "
                 "Y2-1, Y20, Y21, Y22; world axes (+Y up)"},
-      {"units", units == RadianceUnits::game ? "game" : "radiometric"},
-      {"convention", units == RadianceUnits::game
-                         ? "irradiance_coefficients give E/pi = sum_i c_i Y_i(n): multiply by kd for the diffuse "
-                           "exit radiance (game units, no pi)"
-                         : "irradiance_coefficients give E = sum_i c_i Y_i(n) in W/m^2 per unit of radiance"},
+      {"units", sh_units_name(units)},
+      {"convention", sh_convention_text(units)},
       {"band_factors", factors},
       {"window", window_name},
       {"lights", lights},
@@ -426,11 +437,8 @@ nlohmann::json sh_bands_json(const ShBands& sh, RadianceUnits units, ShWindow wi
       {"bands", sh.bands},
       {"basis", "real SH, Condon-Shortley phase, z polar axis, Sloan 2008 order (index l^2 + l + m): " + names +
                     "; world axes (+Y up)"},
-      {"units", units == RadianceUnits::game ? "game" : "radiometric"},
-      {"convention", units == RadianceUnits::game
-                         ? "irradiance_coefficients give E/pi = sum_i c_i Y_i(n): multiply by kd for the diffuse "
-                           "exit radiance (game units, no pi)"
-                         : "irradiance_coefficients give E = sum_i c_i Y_i(n) in W/m^2 per unit of radiance"},
+      {"units", sh_units_name(units)},
+      {"convention", sh_convention_text(units)},
       {"band_factors", factors},
       {"window", window_name},
       {"lights", lights},

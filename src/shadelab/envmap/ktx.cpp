@@ -3,6 +3,7 @@
 #include <Imath/half.h>
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <algorithm>
 #include <cmath>
@@ -90,11 +91,25 @@ Result<std::vector<CubeMap>> decode_ktx_cubemap(const std::vector<char>& in) {
   const bool full = gl_type == gl_float && internal == gl_rgba32f;
   if (!half && !full) return make_error("ktx: only RGBA16F and RGBA32F are supported");
   const std::uint32_t width = get_u32(in, 36);
+  const std::uint32_t height = get_u32(in, 40);
   const std::uint32_t faces = get_u32(in, 52);
   const std::uint32_t mips = get_u32(in, 56);
   const std::uint32_t kv = get_u32(in, 60);  // bytesOfKeyValueData
   if (faces != 6) return make_error("ktx: not a cube map (numberOfFaces = " + std::to_string(faces) + ")");
-  if (width == 0 || mips == 0 || mips > 32) return make_error("ktx: bad size or mip count");
+  // A face side beyond max_image_side would overflow the imageSize product (and int) before the size check.
+  if (width == 0 || width > static_cast<std::uint32_t>(max_image_side)) {
+    return make_error("ktx: pixelWidth " + std::to_string(width) + " is out of range (1 .. " +
+                      std::to_string(max_image_side) + ")");
+  }
+  if (height != width) {
+    return make_error("ktx: cube faces must be square (pixelWidth " + std::to_string(width) + ", pixelHeight " +
+                      std::to_string(height) + ")");
+  }
+  const std::uint32_t full_chain = static_cast<std::uint32_t>(std::bit_width(width));  // 1 + floor(log2 width)
+  if (mips == 0 || mips > full_chain) {
+    return make_error("ktx: numberOfMipmapLevels " + std::to_string(mips) + " is out of range (1 .. " +
+                      std::to_string(full_chain) + " for a " + std::to_string(width) + "-texel face)");
+  }
   std::size_t offset = 64 + kv;
   const std::size_t bpc = half ? 2 : 4;
   std::vector<CubeMap> levels;

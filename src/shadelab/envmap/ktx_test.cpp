@@ -74,6 +74,30 @@ TEST(Ktx, BadInputIsAnError) {
   EXPECT_FALSE(decode_ktx_cubemap(std::vector<char>(100, 'x')).has_value());
 }
 
+// A header whose sizes the file cannot hold is an error that names the field, not an allocation: a face
+// side of 2^31 + 1 once made the level-1 imageSize product wrap to 0 and the reader allocate 2^30-texel faces.
+TEST(Ktx, HeaderSizesOutOfRangeAreErrorsNamingTheField) {
+  const auto good = encode_ktx_cubemap(chain(4)).value();
+  auto with = [&](std::size_t offset, std::uint32_t v) {
+    auto bytes = good;
+    std::memcpy(bytes.data() + offset, &v, 4);
+    return decode_ktx_cubemap(bytes);
+  };
+  ASSERT_TRUE(decode_ktx_cubemap(good).has_value());
+  for (std::uint32_t width : {0u, 0x80000001u, 65537u}) {
+    auto r = with(36, width);
+    ASSERT_FALSE(r.has_value()) << width;
+    EXPECT_NE(r.error().message.find("pixelWidth"), std::string::npos) << r.error().message;
+  }
+  auto not_square = with(40, 8);
+  ASSERT_FALSE(not_square.has_value());
+  EXPECT_NE(not_square.error().message.find("pixelHeight 8"), std::string::npos) << not_square.error().message;
+  auto too_many = with(56, 4);  // a 4-texel face has at most 3 levels (4, 2, 1)
+  ASSERT_FALSE(too_many.has_value());
+  EXPECT_NE(too_many.error().message.find("numberOfMipmapLevels 4"), std::string::npos) << too_many.error().message;
+  EXPECT_TRUE(with(56, 3).has_value());
+}
+
 TEST(Ktx, WritesAtomically) {
   const auto dir = std::filesystem::path(::testing::TempDir()) / "shadelab_ktx_test";
   std::filesystem::create_directories(dir);
