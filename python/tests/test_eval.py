@@ -196,6 +196,50 @@ def test_eval_releases_the_gil():
     assert longest < 0.5 * duration, (longest, duration)
 
 
+
+def _longest_gap_while(call):
+    # The longest gap between this thread's iterations while call() runs in another thread, and how long
+    # call() takes alone.
+    import time
+
+    t0 = time.perf_counter()
+    call()
+    duration = time.perf_counter() - t0
+    started = threading.Event()
+
+    def work():
+        started.set()
+        call()
+
+    t = threading.Thread(target=work)
+    longest = 0.0
+    last = time.perf_counter()
+    t.start()
+    started.wait()
+    while t.is_alive():
+        now = time.perf_counter()
+        longest = max(longest, now - last)
+        last = now
+    t.join()
+    return longest, duration
+
+
+@pytest.mark.parametrize("method", ["pdf", "sample", "albedo"])
+def test_pdf_sample_albedo_release_the_gil(method):
+    # As test_eval_releases_the_gil, for the other loops issue 14 names.
+    f = shadelab.Brdf("cook-torrance")
+    wi = np.tile([0.3, 0.2, 0.9], (2_000_000, 1))
+    wo = np.tile([-0.2, 0.1, 0.8], (2_000_000, 1))
+    u = np.tile([0.25, 0.5, 0.75], (2_000_000, 1))
+    calls = {
+        "pdf": lambda: f.pdf(wi, wo),
+        "sample": lambda: f.sample(wo, u),
+        "albedo": lambda: f.albedo(np.linspace(0.0, 89.0, 40)),
+    }
+    longest, duration = _longest_gap_while(calls[method])
+    assert longest < 0.5 * duration, (longest, duration)
+
+
 def unit_rows(rng, n):
     v = rng.normal(size=(n, 3))
     v[:, 2] = np.abs(v[:, 2])
