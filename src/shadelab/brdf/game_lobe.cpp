@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shadelab/brdf/filament.h"
+#include "shadelab/brdf/ggx.h"
 #include "shadelab/brdf/gloss.h"
 #include "shadelab/brdf/microfacet.h"
 #include "shadelab/brdf/wrapped_diffuse.h"
@@ -72,4 +74,29 @@ kernel::GameSpecularAlbedo game_specular_albedo_table(const GameLobe& lobe) {
   return t;
 }
 
+std::optional<GgxSplitSumLobe> ggx_split_sum_lobe(const Brdf& f) {
+  if (const auto* g = dynamic_cast<const Ggx*>(&f)) {
+    const Ggx::Params& p = g->params();
+    GgxSplitSumLobe lobe;
+    lobe.roughness = std::sqrt(std::sqrt(p.alpha_x * p.alpha_y));  // alpha = r^2
+    // Reflectance at normal incidence by the model's own Fresnel (fresnel.sl F_by_kind_rgb at cos = 1).
+    const Rgb f0 = Rgb(kernel::F_by_kind_rgb(static_cast<int>(p.f), 1.0, p.ior, p.k, p.f0));
+    lobe.f0 = p.ks * f0;
+    lobe.f90 = p.ks;
+    if (p.ms == Ggx::MultipleScattering::kulla_conty) lobe.ggx_ms = &g->state();
+    return lobe;
+  }
+  if (const auto* m = dynamic_cast<const Filament*>(&f)) {
+    const kernel::FilamentState& s = m->state();
+    GgxSplitSumLobe lobe;
+    lobe.roughness = std::sqrt(s.alpha);
+    lobe.f0 = Rgb(s.f0);
+    lobe.f90 = Rgb::gray(1.0);
+    if (s.energy_compensation == 1) lobe.filament = &s;
+    return lobe;
+  }
+  return std::nullopt;
+}
+
 }  // namespace shadelab
+

@@ -61,6 +61,7 @@ class Ggx final : public LayeredBrdf {
   std::optional<KernelBinding> kernel_binding() const override;
 
   const Params& params() const { return m_p; }
+  const kernel::GgxState& state() const { return m_k; }
   // The density of the specular sampler alone (wo above the horizon), for the variance analysis.
   double sampler_pdf(const Vec3& wi, const Vec3& wo) const { return specular_pdf(wi, wo); }
 

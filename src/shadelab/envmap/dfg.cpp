@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <span>
@@ -169,6 +170,31 @@ DfgTable bake_dfg(const DfgOptions& options) {
     table.evaluations += evaluations[k];
   }
   return table;
+}
+
+DfgAb dfg_lookup(const DfgTable& table, double mu, double roughness) {
+  const int n = table.size;
+  if (n < 1) return {};
+  // Texel i's centre is at (i + 0.5) / n: the continuous texel coordinate is x n - 0.5, clamped to the edges.
+  const auto axis = [n](double x, int& i0, int& i1, double& t) {
+    const double p = std::clamp((std::isfinite(x) ? x : 0.0) * n - 0.5, 0.0, static_cast<double>(n - 1));
+    i0 = std::min(static_cast<int>(p), n - 1);
+    i1 = std::min(i0 + 1, n - 1);
+    t = p - i0;
+  };
+  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  double tx = 0.0, ty = 0.0;
+  axis(mu, i0, i1, tx);
+  axis(roughness, j0, j1, ty);
+  DfgAb out;
+  const auto lerp2 = [&](int c) {
+    const double lo = table.at(i0, j0, c) * (1.0 - tx) + table.at(i1, j0, c) * tx;
+    const double hi = table.at(i0, j1, c) * (1.0 - tx) + table.at(i1, j1, c) * tx;
+    return lo * (1.0 - ty) + hi * ty;
+  };
+  out.a = lerp2(0);
+  out.b = lerp2(1);
+  return out;
 }
 
 }  // namespace shadelab

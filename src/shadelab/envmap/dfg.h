@@ -65,4 +65,13 @@ DfgValue dfg_sampled(double mu, double alpha, int samples);
 // Throws std::invalid_argument naming the option when size or samples is out of range or tolerance <= 0.
 DfgTable bake_dfg(const DfgOptions& options);
 
+// A and B at (N.V = mu, perceptual roughness r) read from the table as a GPU's bilinear sampler reads the
+// texture at coordinates (mu, r): between the four nearest texel centres, clamped to the edge texels (so mu
+// and r below half a texel read the first column / row). What the game renderer's split-sum uses.
+struct DfgAb {
+  double a = 0.0;
+  double b = 0.0;
+};
+DfgAb dfg_lookup(const DfgTable& table, double mu, double roughness);
+
 }  // namespace shadelab

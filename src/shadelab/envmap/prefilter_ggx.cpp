@@ -228,4 +228,17 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
   return out;
 }
 
+Rgb sample_ggx_chain(const GgxPrefilteredCube& chain, const Vec3& dir, double roughness) {
+  const auto levels = static_cast<int>(chain.levels.size());
+  if (levels == 0) return {};
+  const double lod = std::clamp(chain.mapping.lod(std::clamp(std::isfinite(roughness) ? roughness : 0.0, 0.0, 1.0)), 0.0, levels - 1.0);
+  const int l0 = std::min(static_cast<int>(lod), levels - 1);
+  const int l1 = std::min(l0 + 1, levels - 1);
+  const double t = lod - l0;
+  const Rgb v0 = sample_cube_seamless(chain.levels[static_cast<std::size_t>(l0)], dir);
+  if (t <= 0.0 || l1 == l0) return v0;
+  return v0 * (1.0 - t) + sample_cube_seamless(chain.levels[static_cast<std::size_t>(l1)], dir) * t;
+}
+
 }  // namespace shadelab
+

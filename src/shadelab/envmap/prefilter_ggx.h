@@ -79,6 +79,10 @@ Rgb prefilter_ggx_brute_force(const CubeMap& radiance, const Vec3& r, double rou
 // A bilinear lookup at direction dir that crosses face edges (the reads of prefilter_ggx).
 Rgb sample_cube_seamless(const CubeMap& cube, const Vec3& dir);
 
+// The chain read as a shader reads it for perceptual roughness r (textureLod at the mapping's lod(r)):
+// sample_cube_seamless in the two levels around the lod, linear between them, clamped to the chain.
+Rgb sample_ggx_chain(const GgxPrefilteredCube& chain, const Vec3& dir, double roughness);
+
 // The filter of prefilter_ggx at any direction: the input pyramid built once, then out(R) at perceptual
 // roughness r > 0 from a sample set (make_samples), exactly as prefilter_ggx computes a texel of R's level.
 class GgxFilter {

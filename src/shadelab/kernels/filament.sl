@@ -45,6 +45,12 @@ inline FilamentState filament_prepare(FilamentParams p) {
   return s;
 }
 
+// Filament's energy compensation factor 1 + f0 (1/E - 1) for the single-scattering albedo E = E(N.V) with
+// F = 1 ("Energy loss in specular reflectance"); the game renderer's split-sum applies it with E = A + B.
+inline rgb filament_energy_compensation(rgb f0, real e) {
+  return rgb(1.0) + f0 * (1.0 / e - 1.0);
+}
+
 inline rgb filament_eval(FilamentState s, vec3 wi, vec3 wo) {
   if (wi.z <= 0.0 || wo.z <= 0.0) return rgb(0.0);
   vec3 h = half_vector(wi, wo);
@@ -56,7 +62,7 @@ inline rgb filament_eval(FilamentState s, vec3 wi, vec3 wo) {
   if (dv > 0.0 && lh > 0.0) {
     rgb fr = F_schlick_rgb(lh, s.f0) * dv;
     if (s.energy_compensation == 1) {
-      fr = fr * (rgb(1.0) + s.f0 * (1.0 / ggx_energy_at(s.e_rows, wo.z) - 1.0));
+      fr = fr * filament_energy_compensation(s.f0, ggx_energy_at(s.e_rows, wo.z));
     }
     f = f + fr;
   }

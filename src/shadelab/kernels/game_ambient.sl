@@ -5,7 +5,11 @@
 //   specular ambient:  L += rho_s(cos theta_o) prefiltered(R, n_phong), R = 2 (wo.n) n - wo the mirror
 //     direction, the prefiltered cube read at the level whose Phong exponent is n_phong (envmap/prefilter.h's
 //     gloss mapping n_i = 2^(scale (1 - i/(M - 1)) + bias) inverted), rho_s the specular lobe's directional
-//     albedo tabulated over cos(theta_o) (brdf/game_lobe.h).
+//     albedo tabulated over cos(theta_o) (brdf/game_lobe.h);
+//   split-sum specular ambient (microfacet-GGX materials, Karis 2013 "Real Shading in Unreal Engine 4" eqs.
+//     4-8; Filament's documentation, "Image based lights"): L += prefiltered_ggx(R, r) (f0 A + f90 B), the GGX
+//     chain (envmap/prefilter_ggx.h) read at the perceptual roughness r and A, B the DFG table's scale and
+//     bias at (N.V, r) (envmap/dfg.h).
 
 const int GAME_ALBEDO_BINS = 32;
 
@@ -47,3 +51,10 @@ inline rgb game_diffuse_ambient(rgb diffuse_albedo, rgb e_over_pi) {
 inline rgb game_specular_ambient(rgb rho_s, rgb prefiltered) {
   return rho_s * prefiltered;
 }
+
+// The split-sum specular ambient: the GGX-prefiltered radiance about R times the environment BRDF
+// f0 A + f90 B (A, B from the DFG table at N.V and the roughness).
+inline rgb game_split_sum_specular(rgb prefiltered, rgb f0, rgb f90, real a, real b) {
+  return prefiltered * (f0 * a + f90 * b);
+}
+

@@ -74,3 +74,14 @@ inline rgb ggx_eval(GgxState s, vec3 wi, vec3 wo) {
   }
   return f;
 }
+
+// The directional albedo of the multiple-scattering lobe at mu_o for a directional albedo e_o = E(mu_o):
+// integral f_ms mu_i d(wi) = ms_scale (1 - e_o) 2 pi integral_0^1 (1 - E(mu)) mu d(mu) = ms_scale (1 - e_o) pi
+// (1 - E_avg) = ks F_ms (1 - e_o) (Kulla & Conty 2017, slide 18). 0 without multiple scattering. The game
+// renderer's split-sum passes e_o from its DFG table and lights this diffuse-like lobe with the irradiance.
+inline rgb ggx_ms_albedo(GgxState s, real e_o) {
+  if (s.p.ms != GGX_MS_KULLA_CONTY) return rgb(0.0);
+  real e_avg = ggx_energy_average_at(s.ms_rows);
+  return s.ms_scale * (SL_PI * (1.0 - e_avg) * max(0.0, 1.0 - e_o));
+}
+

@@ -1,5 +1,6 @@
 #include "shadelab/render/game_renderer.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -9,10 +10,18 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "shadelab/core/constants.h"
+#include "shadelab/envmap/dfg.h"
 #include "shadelab/envmap/irradiance.h"
 #include "shadelab/envmap/prefilter.h"
+#include "shadelab/envmap/prefilter_ggx.h"
 #include "shadelab/envmap/sh.h"
 #include "shadelab/kernels/kernels.h"
 #include "shadelab/brdf/game_lobe.h"
@@ -26,6 +35,9 @@
 namespace shadelab {
 
 namespace {
+
+// The microfacet-GGX models, whose specular ambient is the split sum (ggx_split_sum_lobe).
+bool uses_split_sum(const std::string& model) { return model == "ggx" || model == "filament"; }
 
 class GameShader {
  public:
@@ -55,12 +67,24 @@ class GameShader {
       m_punctual.push_back(DirectionalLight{m_scene.environment.sky.sun_direction, m_scene.environment.sky.sun_irradiance});
     }
     // The baked environment: SH9, irradiance cube and prefiltered specular chain.
+    // The split sum's GGX chain only for a scene with a ggx or filament material.
+    bool any_split_sum = false;
+    if (m_options.ggx_specular == GameGgxSpecular::split_sum) {
+      for (const Material& m : m_scene.materials) any_split_sum = any_split_sum || uses_split_sum(m.model);
+    }
     if (m_env.has_light()) {
-      auto baked = bake_game_environment(m_env, m_options);
+      GameOptions bake_options = m_options;
+      if (!any_split_sum) bake_options.ggx_specular = GameGgxSpecular::phong;
+      auto baked = bake_game_environment(m_env, bake_options);
       if (!baked) return baked.error();
       m_sh = baked->sh;
       m_irradiance = std::move(baked->irradiance);
       m_specular = std::move(baked->specular);
+      m_specular_ggx = std::move(baked->specular_ggx);
+    }
+    if (any_split_sum) {
+      if (m_options.dfg_size < 1 || m_options.dfg_size > 4096) return make_error("dfg_size must be in [1, 4096]");
+      m_dfg = &game_dfg_table(m_options.dfg_size);
     }
     m_sh += m_sh_lights;  // the environment's coefficients (zero without one) and the D3DX-style lights
     // Per material: Phong exponent, wrap and the specular lobe's directional albedo over cos(theta_o).
@@ -76,6 +100,7 @@ class GameShader {
         info = game_lobe(m.model, *values, *f);
         if (m.metallic_roughness_texture >= 0) info.roughness_factor = values->scalar("perceptual_roughness");
       }
+      m_split_sum.push_back(m_options.ggx_specular == GameGgxSpecular::split_sum && uses_split_sum(m.model));
       m_info.push_back(info);
       m_albedo_tables.push_back(game_specular_albedo_table(info));
     }
@@ -126,10 +151,10 @@ class GameShader {
                                : kernel::punctual_game(fr, colour_game, wi.z);
       }
     }
+    Rgb e_over_pi;  // the diffuse ambient's E/pi at n (zero with GameAmbient::none)
     if (m_env.has_light() || m_has_sh_lights) {
       const Vec3 n = sf.frame.n;
       if (m_options.diffuse != GameAmbient::none) {
-        Rgb e_over_pi;
         if (m_options.diffuse == GameAmbient::irradiance_map) {
           e_over_pi = m_irradiance.sample(n);
         } else {
@@ -138,7 +163,22 @@ class GameShader {
         l += kernel::game_diffuse_ambient(f->diffuse_albedo(), e_over_pi);
       }
     }
-    if (m_env.has_light()) {
+    std::optional<GgxSplitSumLobe> split;
+    if (m_env.has_light() && m_options.specular_ambient && m_split_sum[static_cast<std::size_t>(hit.material)] &&
+        !m_specular_ggx.levels.empty() && m_dfg != nullptr) {
+      split = ggx_split_sum_lobe(*f);  // the hit's own BRDF: a textured hit's roughness and f0
+    }
+    if (split) {
+      // The split sum of kernels/game_ambient.sl: prefiltered_ggx(R, r) (f0 A + f90 B), A and B at (N.V, r).
+      const Vec3 r = kernel::game_reflect(wo_world, sf.frame.n);
+      const DfgAb ab = dfg_lookup(*m_dfg, wo.z, split->roughness);
+      Rgb spec = Rgb(kernel::game_split_sum_specular(sample_ggx_chain(m_specular_ggx, r, split->roughness), split->f0,
+                                                     split->f90, ab.a, ab.b));
+      const double e = ab.a + ab.b;  // E(N.V) with F = 1, of the same table
+      if (split->filament != nullptr && e > 0.0) spec = spec * Rgb(kernel::filament_energy_compensation(split->f0, e));
+      if (split->ggx_ms != nullptr) spec += Rgb(kernel::ggx_ms_albedo(*split->ggx_ms, e)) * e_over_pi;
+      l += spec;
+    } else if (m_env.has_light()) {
       const Vec3 n = sf.frame.n;
       if (m_options.specular_ambient && info.exponent > 0.0 && !m_specular.levels.empty()) {
         double n_phong = info.exponent;
@@ -188,6 +228,9 @@ class GameShader {
   bool m_has_sh_lights = false;
   CubeMap m_irradiance;
   PrefilteredCube m_specular;
+  GgxPrefilteredCube m_specular_ggx;
+  const DfgTable* m_dfg = nullptr;
+  std::vector<bool> m_split_sum;  // per material: the split-sum specular ambient
   std::vector<GameLobe> m_info;
   std::vector<kernel::GameSpecularAlbedo> m_albedo_tables;
 };
@@ -211,9 +254,43 @@ Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const
     auto chain = prefilter_specular(cube, po);
     if (!chain) return chain.error();
     out.specular = std::move(chain).value();
+    if (options.ggx_specular == GameGgxSpecular::split_sum) {
+      if (options.ggx_samples < 1 || options.ggx_samples > (1 << 20)) return make_error("ggx_samples must be in [1, 1048576]");
+      // Level 0 (r = 0) is the environment point-sampled as above at the chain's size, options.specular_size.
+      const int m = options.specular_size;
+      CubeMap base(m);
+      if (m == n) {
+        base = cube;
+      } else {
+        for (int f = 0; f < 6; ++f)
+          for (int y = 0; y < m; ++y)
+            for (int x = 0; x < m; ++x) base.set(f, x, y, env.radiance_without_sun(texel_direction(f, x, y, m)));
+      }
+      GgxPrefilterOptions go;
+      go.samples = options.ggx_samples;
+      try {
+        out.specular_ggx = prefilter_ggx(base, go);
+      } catch (const std::invalid_argument& e) {
+        return make_error(std::string("GGX prefilter: ") + e.what());
+      }
+    }
   }
   out.radiance = std::move(cube);
   return out;
+}
+
+const DfgTable& game_dfg_table(int size) {
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<const DfgTable>> tables;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = tables[size];
+  if (!slot) {
+    DfgOptions o;
+    o.size = size;
+    o.tolerance = 1e-5;
+    slot = std::make_unique<const DfgTable>(bake_dfg(o));
+  }
+  return *slot;
 }
 
 Result<GameEnvironment> bake_game_environment(const Scene& scene, const GameOptions& options) {
@@ -274,4 +351,18 @@ Result<Rgb> game_radiance(const Scene& scene, const Vec3& origin, const Vec3& di
   return shader.shade(Ray{origin, normalize(direction)});
 }
 
+Result<std::vector<Rgb>> game_radiance_rays(const Scene& scene, const std::vector<Ray>& rays, const GameOptions& options) {
+  GameShader shader(scene, options);
+  if (auto ok = shader.prepare(); !ok) return ok.error();
+  std::vector<Rgb> out(rays.size());
+  tbb::task_arena arena(arena_threads(options.threads >= 0 ? options.threads : scene.settings.threads));
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) out[i] = shader.shade(Ray{rays[i].origin, normalize(rays[i].direction)});
+    });
+  });
+  return out;
+}
+
 }  // namespace shadelab
+

@@ -11,7 +11,16 @@
 //     wrapped-diffuse materials;
 //   specular ambient:  L += rho_s(wo) * prefiltered(R, n_phong), the prefiltered cube's level for the
 //     material's lobe width and the specular lobe's directional albedo rho_s (a per-material table over
-//     cos(theta_o), from the BRDF's own sampler, fixed seed);
+//     cos(theta_o), from the BRDF's own sampler, fixed seed) -- the Phong-family models;
+//   split-sum specular ambient for the microfacet-GGX models (ggx, filament; GameGgxSpecular::split_sum, the
+//     default), as engines ship it (Karis 2013; Filament's documentation, "Image based lights"):
+//     L += prefiltered_ggx(R, r) (f0 A(N.V, r) + f90 B(N.V, r)), the GGX chain of envmap/prefilter_ggx.h
+//     (linear roughness-to-lod mapping, options.specular_size) read at the hit's perceptual roughness r and
+//     A, B from a DFG table (envmap/dfg.h, options.dfg_size, read bilinearly by dfg_lookup); f0, f90 and the
+//     energy terms from brdf/game_lobe.h ggx_split_sum_lobe: filament's compensation multiplies by
+//     1 + f0 (1/E - 1), ggx's Kulla-Conty lobe adds ks F_ms (1 - E) (E/pi)(n), E = A + B of the same table.
+//     For a constant environment L and the model's Schlick Fresnel and height-correlated G2 this is exact up
+//     to the table's interpolation: integral L f cos = L (f0 A + f90 B) by the definition of A and B.
 //   emission of the surface seen; the environment seen directly.
 // The formulas are the kernels shaders share (kernels/game_shading.sl: the punctual term and the inverse
 // square law; game_ambient.sl: the ambient terms, the mirror direction, the albedo table lookup and the
@@ -28,7 +37,9 @@
 // that the agreement test can fail.
 #pragma once
 
+#include "shadelab/envmap/dfg.h"
 #include "shadelab/envmap/prefilter.h"
+#include "shadelab/envmap/prefilter_ggx.h"
 #include "shadelab/envmap/sh.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/path_tracer.h"
@@ -36,6 +47,11 @@
 namespace shadelab {
 
 enum class GameAmbient { sh9, irradiance_map, none };
+
+// The specular ambient of the microfacet-GGX models (ggx, filament): the split sum with a GGX-prefiltered
+// chain and a DFG table (default), or the Phong chain the Phong-family models use (the old path, kept to
+// measure one against the other).
+enum class GameGgxSpecular { split_sum, phong };
 
 struct GameOptions {
   bool shadows = true;
@@ -48,6 +64,9 @@ struct GameOptions {
   int threads = -1;       // -1: the scene's
   int environment_size = 64;  // face size the environment is baked at
   int specular_size = 64;     // face size of the prefiltered cube's level 0
+  GameGgxSpecular ggx_specular = GameGgxSpecular::split_sum;
+  int ggx_samples = 512;      // Hammersley half vectors per texel of the GGX chain (prefilter_ggx.h)
+  int dfg_size = 64;          // the split sum's DFG table (dfg.h), baked once per process per size
 };
 
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options = {});
@@ -55,7 +74,9 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options 
 // The environment as game shading bakes it: the radiance without the sky's sun (env_light.h), point-sampled
 // at the texel centres of a cube of options.environment_size (kept as radiance); its SH9 projection (radiance units: evaluate
 // with sh9_irradiance_game for E/pi); the irradiance cube in game units (GameAmbient::irradiance_map only);
-// and the prefiltered specular chain of options.specular_size (options.specular_ambient only). has_light is
+// and the prefiltered specular chain of options.specular_size (options.specular_ambient only), and its GGX
+// chain (options.specular_ambient with ggx_specular = split_sum; render_game bakes it only for a scene with
+// a ggx or filament material). has_light is
 // false, and the rest empty, for a scene with neither an environment nor hemisphere lights. The browser
 // explorer (web/) bakes its HDRIs with it, so its sphere is lit by exactly what `render --mode game` uses.
 struct GameEnvironment {
@@ -64,11 +85,20 @@ struct GameEnvironment {
   Sh9 sh;
   CubeMap irradiance;
   PrefilteredCube specular;
+  GgxPrefilteredCube specular_ggx;
 };
 Result<GameEnvironment> bake_game_environment(const Scene& scene, const GameOptions& options = {});
 Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const GameOptions& options = {});
 
+// The DFG table the split sum reads (height-correlated, single scattering, quadrature), baked on first use
+// for each size and kept for the process (thread-safe). size in [1, 4096].
+const DfgTable& game_dfg_table(int size);
+
 // The game-shaded radiance along one camera ray (for tests).
 Result<Rgb> game_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, const GameOptions& options = {});
+
+// The same for many rays with one preparation (the bake): the radiance along each (TBB over rays, the
+// options' or the scene's threads; each value independent of the thread count). Ray::tmax is not used.
+Result<std::vector<Rgb>> game_radiance_rays(const Scene& scene, const std::vector<Ray>& rays, const GameOptions& options = {});
 
 }  // namespace shadelab
