@@ -49,8 +49,9 @@ namespace shadelab {
 enum class GameAmbient { sh9, irradiance_map, none };
 
 // The specular ambient of the microfacet-GGX models (ggx, filament): the split sum with a GGX-prefiltered
-// chain and a DFG table (default), or the Phong chain the Phong-family models use (the old path, kept to
-// measure one against the other).
+// chain and a DFG table, or the Phong chain the Phong-family models use (the default for now: the explorer's
+// WebGL sphere, which must match this renderer, still shades GGX on the Phong chain, and the split sum under a
+// real environment is not yet proved against a brute-force convolution; docs/renderer.md).
 enum class GameGgxSpecular { split_sum, phong };
 
 struct GameOptions {
@@ -64,7 +65,7 @@ struct GameOptions {
   int threads = -1;       // -1: the scene's
   int environment_size = 64;  // face size the environment is baked at
   int specular_size = 64;     // face size of the prefiltered cube's level 0
-  GameGgxSpecular ggx_specular = GameGgxSpecular::split_sum;
+  GameGgxSpecular ggx_specular = GameGgxSpecular::phong;
   int ggx_samples = 512;      // Hammersley half vectors per texel of the GGX chain (prefilter_ggx.h)
   int dfg_size = 64;          // the split sum's DFG table (dfg.h), baked once per process per size
 };
