@@ -169,32 +169,11 @@ def test_eval_releases_the_gil():
     # While a long eval runs in another thread, this thread keeps running Python code. If the loop held the
     # GIL, this thread would stall for the whole eval: its longest gap between iterations would be about
     # the eval's duration, not a small part of it.
-    import time
-
     f = shadelab.Brdf("cook-torrance")
     wi = np.tile([0.3, 0.2, 0.9], (2_000_000, 1))
     wo = np.tile([-0.2, 0.1, 0.8], (2_000_000, 1))
-    t0 = time.perf_counter()
-    f.eval(wi, wo)
-    duration = time.perf_counter() - t0
-    started = threading.Event()
-
-    def work():
-        started.set()
-        f.eval(wi, wo)
-
-    t = threading.Thread(target=work)
-    longest = 0.0
-    last = time.perf_counter()
-    t.start()
-    started.wait()
-    while t.is_alive():
-        now = time.perf_counter()
-        longest = max(longest, now - last)
-        last = now
-    t.join()
+    longest, duration = _longest_gap_while(lambda: f.eval(wi, wo))
     assert longest < 0.5 * duration, (longest, duration)
-
 
 
 def _longest_gap_while(call):
