@@ -1,6 +1,5 @@
 #include "shadelab/render/game_renderer.h"
 
-#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -351,18 +350,4 @@ Result<Rgb> game_radiance(const Scene& scene, const Vec3& origin, const Vec3& di
   return shader.shade(Ray{origin, normalize(direction)});
 }
 
-Result<std::vector<Rgb>> game_radiance_rays(const Scene& scene, const std::vector<Ray>& rays, const GameOptions& options) {
-  GameShader shader(scene, options);
-  if (auto ok = shader.prepare(); !ok) return ok.error();
-  std::vector<Rgb> out(rays.size());
-  tbb::task_arena arena(arena_threads(options.threads >= 0 ? options.threads : scene.settings.threads));
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) out[i] = shader.shade(Ray{rays[i].origin, normalize(rays[i].direction)});
-    });
-  });
-  return out;
-}
-
 }  // namespace shadelab
-

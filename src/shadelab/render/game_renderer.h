@@ -12,8 +12,8 @@
 //   specular ambient:  L += rho_s(wo) * prefiltered(R, n_phong), the prefiltered cube's level for the
 //     material's lobe width and the specular lobe's directional albedo rho_s (a per-material table over
 //     cos(theta_o), from the BRDF's own sampler, fixed seed) -- the Phong-family models;
-//   split-sum specular ambient for the microfacet-GGX models (ggx, filament; GameGgxSpecular::split_sum, the
-//     default), as engines ship it (Karis 2013; Filament's documentation, "Image based lights"):
+//   split-sum specular ambient for the microfacet-GGX models (ggx, filament; GameGgxSpecular::split_sum,
+//     opt-in for now), as engines ship it (Karis 2013; Filament's documentation, "Image based lights"):
 //     L += prefiltered_ggx(R, r) (f0 A(N.V, r) + f90 B(N.V, r)), the GGX chain of envmap/prefilter_ggx.h
 //     (linear roughness-to-lod mapping, options.specular_size) read at the hit's perceptual roughness r and
 //     A, B from a DFG table (envmap/dfg.h, options.dfg_size, read bilinearly by dfg_lookup); f0, f90 and the
@@ -97,9 +97,5 @@ const DfgTable& game_dfg_table(int size);
 
 // The game-shaded radiance along one camera ray (for tests).
 Result<Rgb> game_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, const GameOptions& options = {});
-
-// The same for many rays with one preparation (the bake): the radiance along each (TBB over rays, the
-// options' or the scene's threads; each value independent of the thread count). Ray::tmax is not used.
-Result<std::vector<Rgb>> game_radiance_rays(const Scene& scene, const std::vector<Ray>& rays, const GameOptions& options = {});
 
 }  // namespace shadelab

@@ -611,11 +611,12 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
   return result;
 }
 
-namespace {
-
-// One ray's estimate with a prepared integrator (estimate_radiance's contract).
-RadianceEstimate estimate_one(const Integrator& integrator, const Vec3& origin, const Vec3& direction, int samples,
-                              std::uint64_t seed, SamplerKind sampler) {
+Result<RadianceEstimate> estimate_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, int samples,
+                                           SamplingMode mode, int max_depth, std::uint64_t seed, SamplerKind sampler) {
+  Integrator integrator(scene, mode, max_depth > 0 ? max_depth : scene.settings.max_depth);
+  auto ok = integrator.prepare();
+  if (!ok) return ok.error();
+  if (samples < 1) return make_error("estimate_radiance: samples must be >= 1");
   // Randomized QMC: `replicas` independent scrambles (pixel seeds) of samples / replicas points each. Their
   // means are independent and unbiased, so the spread of the means gives an honest standard error (the
   // per-sample variance would overstate the error of stratified points).
@@ -643,36 +644,6 @@ RadianceEstimate estimate_one(const Integrator& integrator, const Vec3& origin, 
   e.standard_error = {std::sqrt(std::max(0.0, spread.r) * scale), std::sqrt(std::max(0.0, spread.g) * scale),
                       std::sqrt(std::max(0.0, spread.b) * scale)};
   return e;
-}
-
-}  // namespace
-
-Result<RadianceEstimate> estimate_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, int samples,
-                                           SamplingMode mode, int max_depth, std::uint64_t seed, SamplerKind sampler) {
-  Integrator integrator(scene, mode, max_depth > 0 ? max_depth : scene.settings.max_depth);
-  auto ok = integrator.prepare();
-  if (!ok) return ok.error();
-  if (samples < 1) return make_error("estimate_radiance: samples must be >= 1");
-  return estimate_one(integrator, origin, direction, samples, seed, sampler);
-}
-
-Result<std::vector<RadianceEstimate>> estimate_radiance_rays(const Scene& scene, const std::vector<Ray>& rays, int samples,
-                                                             SamplingMode mode, int max_depth, std::uint64_t seed,
-                                                             SamplerKind sampler) {
-  Integrator integrator(scene, mode, max_depth > 0 ? max_depth : scene.settings.max_depth);
-  auto ok = integrator.prepare();
-  if (!ok) return ok.error();
-  if (samples < 1) return make_error("estimate_radiance: samples must be >= 1");
-  std::vector<RadianceEstimate> out(rays.size());
-  tbb::task_arena arena(arena_threads(scene.settings.threads));
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-        out[i] = estimate_one(integrator, rays[i].origin, rays[i].direction, samples, mix64(seed ^ mix64(~static_cast<std::uint64_t>(i))), sampler);
-      }
-    });
-  });
-  return out;
 }
 
 }  // namespace shadelab

@@ -30,7 +30,6 @@
 #include "shadelab/image/image.h"
 #include "shadelab/render/fixed_sum.h"
 #include "shadelab/sampling/owen.h"
-#include "shadelab/render/accel.h"
 #include "shadelab/scene/scene.h"
 
 namespace shadelab {
@@ -115,13 +114,5 @@ struct RadianceEstimate {
 Result<RadianceEstimate> estimate_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, int samples,
                                            SamplingMode mode = SamplingMode::mis, int max_depth = -1,
                                            std::uint64_t seed = 1, SamplerKind sampler = SamplerKind::owen_sobol);
-
-// The same for many rays with one preparation (BVH, light tables): ray i from the seed mix64(seed ^
-// mix64(~i)), so each ray's estimate depends only on the seed and its index, whatever the thread count (TBB
-// over rays, the scene's threads). Ray::tmax is not used.
-Result<std::vector<RadianceEstimate>> estimate_radiance_rays(const Scene& scene, const std::vector<Ray>& rays, int samples,
-                                                             SamplingMode mode = SamplingMode::mis, int max_depth = -1,
-                                                             std::uint64_t seed = 1,
-                                                             SamplerKind sampler = SamplerKind::owen_sobol);
 
 }  // namespace shadelab
