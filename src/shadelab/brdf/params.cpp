@@ -1,5 +1,7 @@
 #include "shadelab/brdf/params.h"
 
+#include "shadelab/core/text.h"
+
 #include <charconv>
 #include <cctype>
 #include <cmath>
@@ -41,13 +43,13 @@ std::vector<std::string> split(std::string_view s, char sep) {
 Result<std::vector<double>> parse_numbers(std::string_view text) {
   std::vector<double> out;
   for (const auto& part : split(text, ',')) {
-    if (part.empty()) return make_error("'" + std::string(text) + "' has an empty number");
+    if (part.empty()) return make_error("'" + printable(text) + "' has an empty number");
     double v = 0.0;
     const auto* first = part.data();
     const auto* last = part.data() + part.size();
 #if defined(__cpp_lib_to_chars)
     const auto [ptr, ec] = std::from_chars(first, last, v);
-    if (ec != std::errc() || ptr != last) return make_error("'" + part + "' is not a number");
+    if (ec != std::errc() || ptr != last) return make_error("'" + printable(part) + "' is not a number");
 #else
     // libc++ before 17 (the explorer's WebAssembly build, Debian's emscripten) has no floating-point
     // from_chars: strtod on the whole part, refusing what from_chars refuses and strtod would take (leading
@@ -56,9 +58,9 @@ Result<std::vector<double>> parse_numbers(std::string_view text) {
                          part.find_first_of("xX") != std::string::npos;
     char* end = nullptr;
     v = refused ? 0.0 : std::strtod(first, &end);  // overflow gives +-HUGE_VAL, refused as not finite below
-    if (refused || end != last) return make_error("'" + part + "' is not a number");
+    if (refused || end != last) return make_error("'" + printable(part) + "' is not a number");
 #endif
-    if (!std::isfinite(v)) return make_error("'" + part + "' is not finite");
+    if (!std::isfinite(v)) return make_error("'" + printable(part) + "' is not finite");
     out.push_back(v);
   }
   return out;
@@ -67,7 +69,7 @@ Result<std::vector<double>> parse_numbers(std::string_view text) {
 Result<std::pair<std::string, std::string>> split_assignment(std::string_view text) {
   const auto eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0) {
-    return make_error("parameter '" + std::string(text) + "' is not of the form NAME=VALUE");
+    return make_error("parameter '" + printable(text) + "' is not of the form NAME=VALUE");
   }
   return std::pair{trim(text.substr(0, eq)), trim(text.substr(eq + 1))};
 }
@@ -112,7 +114,7 @@ Result<bool> check_range(const std::string& where, double v, double lo, double h
 
 Result<ParamValues> parse_params(std::string_view model, const std::vector<ParamSpec>& specs,
                                  const std::vector<std::pair<std::string, std::string>>& assignments) {
-  const std::string prefix = "brdf " + std::string(model) + ": parameter '";
+  const std::string prefix = "brdf " + printable(model) + ": parameter '";
   ParamValues out;
   auto assign = [&](const ParamSpec& spec, const std::string& text, bool is_explicit) -> Result<bool> {
     const std::string where = prefix + spec.name + "'";
@@ -125,7 +127,7 @@ Result<ParamValues> parse_params(std::string_view model, const std::vector<Param
         if (!ok) {
           std::string list;
           for (const auto& c : spec.choices) list += (list.empty() ? "" : " | ") + c;
-          return make_error(where + " = '" + text + "' is not one of " + list);
+          return make_error(where + " = '" + printable(text) + "' is not one of " + list);
         }
         value.word = text;
         break;
@@ -136,10 +138,10 @@ Result<ParamValues> parse_params(std::string_view model, const std::vector<Param
         if (!nums) return make_error(where + ": " + nums.error().message);
         const std::size_t count = nums->size();
         if (spec.kind == ParamKind::scalar && count != 1) {
-          return make_error(where + " takes one number, got '" + text + "'");
+          return make_error(where + " takes one number, got '" + printable(text) + "'");
         }
         if (spec.kind == ParamKind::color && count != 1 && count != 3) {
-          return make_error(where + " takes a number or r,g,b, got '" + text + "'");
+          return make_error(where + " takes a number or r,g,b, got '" + printable(text) + "'");
         }
         for (double v : *nums) {
           auto r = check_range(where, v, spec.min, spec.max);
@@ -154,7 +156,7 @@ Result<ParamValues> parse_params(std::string_view model, const std::vector<Param
           if (!nums) return make_error(where + ": " + nums.error().message);
           if (nums->size() != static_cast<std::size_t>(spec.group_size)) {
             return make_error(where + ": each lobe takes " + std::to_string(spec.group_size) +
-                              " numbers separated by ',' (lobes separated by ';'), got '" + group + "'");
+                              " numbers separated by ',' (lobes separated by ';'), got '" + printable(group) + "'");
           }
           for (std::size_t i = 0; i < nums->size(); ++i) {
             const auto [lo, hi] = i < spec.group_ranges.size() ? spec.group_ranges[i] : std::pair{spec.min, spec.max};
@@ -182,7 +184,7 @@ Result<ParamValues> parse_params(std::string_view model, const std::vector<Param
     if (spec == nullptr) {
       std::string list;
       for (const auto& s : specs) list += (list.empty() ? "" : ", ") + s.name;
-      return make_error("brdf " + std::string(model) + ": unknown parameter '" + name + "' (parameters: " + list + ")");
+      return make_error("brdf " + printable(model) + ": unknown parameter '" + printable(name) + "' (parameters: " + list + ")");
     }
     auto r = assign(*spec, text, true);
     if (!r) return r.error();

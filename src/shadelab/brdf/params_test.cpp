@@ -43,6 +43,37 @@ TEST(Params, ErrorsNameModelAndParameter) {
   EXPECT_NE(error_of("nope", {}).find("unknown BRDF model 'nope'"), std::string::npos);
 }
 
+// Every message quotes user text as one printable line (docs/testing.md, "Classes of bad input"): a control
+// byte or a byte that is not UTF-8 in a value, a name or a malformed assignment never reaches the message raw.
+// Found by the scene fuzzer: "f": "conduct\x7fr" (fuzz/regressions/scene/crash-5512...).
+bool one_printable_line(const std::string& s) {
+  for (const unsigned char c : s) {
+    if (c < 0x20 || c == 0x7f || c >= 0x80) return false;
+  }
+  return !s.empty();
+}
+
+TEST(Params, ErrorsQuoteUserTextAsOnePrintableLine) {
+  const std::vector<std::pair<std::string, ParamAssignments>> cases = {
+      {"choice value", {{"f", "conduct\x7fr"}}},
+      {"choice value, not UTF-8", {{"d", "beck\xffmann"}}},
+      {"scalar, not a number", {{"m", "0.3\n"}}},
+      {"scalar, two numbers then a control byte", {{"m", "0.3,\x01"}}},
+      {"color, empty number", {{"kd", "0.1,,\t\x1b[31m"}}},
+      {"unknown name", {{"k\rs", "1"}}},
+  };
+  for (const auto& [what, p] : cases) {
+    const std::string e = error_of("cook-torrance", p);
+    EXPECT_TRUE(one_printable_line(e)) << what << ": " << e;
+    EXPECT_NE(e.find("brdf cook-torrance"), std::string::npos) << what << ": " << e;
+  }
+  const auto bad = split_assignment("kd\x7f" "0.5");
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_TRUE(one_printable_line(bad.error().message)) << bad.error().message;
+  const auto lobes = error_of("lafortune", {{"lobes", "1,1,1\x02;"}});
+  EXPECT_TRUE(one_printable_line(lobes)) << lobes;
+}
+
 TEST(Params, SplitAssignment) {
   auto a = split_assignment("kd=0.5,0.5,0.5");
   ASSERT_TRUE(a.has_value());

@@ -16,6 +16,7 @@ namespace {
 
 using testing::add_material;
 using testing::floor_quad;
+using testing::furnace_sphere;
 
 // A plane of the given model under three punctual lights given in game units (colour c: E = pi c).
 Scene punctual_scene(const std::string& model) {
@@ -131,11 +132,7 @@ TEST(GameRenderer, TheGgxFamilyInAWhiteFurnace) {
       {"ggx", {{"f", "none"}, {"kd", "0.6"}, {"ms", "kulla-conty"}, {"roughness", "0.5"}}},
   };
   for (const Case& c : cases) {
-    Scene s;
-    s.environment.kind = Environment::Kind::uniform;
-    s.environment.uniform = Rgb::gray(0.5);
-    s.spheres.push_back({{0, 0, 0}, 1.0, add_material(s, c.model, c.params)});
-    s.settings.max_depth = 1;
+    const Scene s = furnace_sphere(c.model, c.params);
     for (const Vec3 o : {Vec3{0, 0, 4}, Vec3{0.7, 0, 4}, Vec3{0.98, 0, 4}}) {
       const Rgb game = game_radiance(s, o, Vec3{0, 0, -1}).value();
       const auto ref = estimate_radiance(s, o, Vec3{0, 0, -1}, 20000, SamplingMode::brdf, 1, 5).value();

@@ -37,12 +37,7 @@ using testing::add_material;
 // A unit sphere at the origin under a constant environment L = 0.5, seen along -Z from (x, 0, 4): the hit
 // normal is (x, 0, sqrt(1 - x^2)), so N.V = sqrt(1 - x^2).
 Scene constant_sphere(const std::string& model, ParamAssignments params) {
-  Scene s;
-  s.environment.kind = Environment::Kind::uniform;
-  s.environment.uniform = Rgb::gray(0.5);
-  s.spheres.push_back({{0, 0, 0}, 1.0, add_material(s, model, std::move(params))});
-  s.settings.max_depth = 1;
-  return s;
+  return testing::furnace_sphere(model, std::move(params));
 }
 
 const double offsets[] = {0.0, 0.5, 0.8, 0.95, 0.99};  // N.V = 1, 0.866, 0.6, 0.312, 0.141

@@ -12,6 +12,7 @@ namespace {
 
 using testing::add_material;
 using testing::floor_quad;
+using testing::furnace_sphere;
 
 // |a - b| within k standard errors (plus a tiny absolute slack for rounding).
 void expect_within(double a, double b, double sigma, double k, const std::string& what) {
@@ -20,11 +21,7 @@ void expect_within(double a, double b, double sigma, double k, const std::string
 
 TEST(PathTracer, WhiteFurnaceSphere) {
   // A white Lambert sphere under a uniform environment of radiance L renders L everywhere (it cannot see itself).
-  Scene s;
-  s.environment.kind = Environment::Kind::uniform;
-  s.environment.uniform = Rgb::gray(0.5);
-  s.spheres.push_back({{0, 0, 0}, 1.0, add_material(s, "lambert", {{"kd", "1"}})});
-  s.settings.max_depth = 64;
+  const Scene s = furnace_sphere("lambert", {{"kd", "1"}}, 64);
   for (const Vec3 d : {Vec3{0, 0, -1}, normalize(Vec3{0.3, 0.2, -1})}) {
     for (auto mode : {SamplingMode::mis, SamplingMode::brdf, SamplingMode::light}) {
       const auto e = estimate_radiance(s, {0, 0, 4}, d, 4000, mode).value();
@@ -50,11 +47,7 @@ TEST(PathTracer, TheGgxFamilyInAWhiteFurnace) {
       {"filament", {{"base_color", "1"}, {"metallic", "1"}, {"perceptual_roughness", "0.9"}}},
   };
   for (const Case& c : cases) {
-    Scene s;
-    s.environment.kind = Environment::Kind::uniform;
-    s.environment.uniform = Rgb::gray(0.5);
-    s.spheres.push_back({{0, 0, 0}, 1.0, add_material(s, c.model, c.params)});
-    s.settings.max_depth = 1;
+    const Scene s = furnace_sphere(c.model, c.params);
     // Straight on, and a ray that meets the sphere at about 78 degrees from its normal.
     for (const Vec3 o : {Vec3{0, 0, 4}, Vec3{0.98, 0, 4}}) {
       const auto e = estimate_radiance(s, o, Vec3{0, 0, -1}, 20000, SamplingMode::brdf, 1, 11).value();
