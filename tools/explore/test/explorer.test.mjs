@@ -1,6 +1,7 @@
 // The explorer in a real browser: Debian's headless Chromium (never a downloaded one) driven by
 // playwright-core, on the site `shadelab explore --out` writes, loaded from file:// (docs/explorer.md).
-//   - the figures in the DOM (#shadelab-state) equal `shadelab brdf albedo/eval --json` to 1e-12 relative;
+//   - the figures in the DOM (#shadelab-state) equal `shadelab brdf albedo/eval --json` to 1e-12 relative
+//     (the 3D lobe at a few grid points: the luminance of `brdf eval --json`);
 //   - the URL state round-trips (a link reproduces the view, a changed control changes the URL);
 //   - a bad URL parameter shows a message naming it, the page still draws; no console error otherwise;
 //   - the WebGL 2 sphere (the exported GLSL ES) matches `shadelab render --mode game` of the same scene
@@ -72,6 +73,31 @@ const CASES = [
   { model: 'wrapped-diffuse', params: { kd: '0.7,0.5,0.3', w: '0.5' }, theta: '0,75', wi: '0.9,0,0.1', wo: '0,0,1' },
 ];
 
+// Rec. 709 luminance of linear RGB (ITU-R BT.709 weights), for the 3D lobe's figures.
+const luminance709 = ([r, g, b]) => 0.2126 * r + 0.7152 * g + 0.0722 * b;
+
+// The 3D lobe in the DOM: its grid's shape, wi at the incidence angle in the x-z plane, and a few grid points
+// (the normal, the mirror direction, off-plane points, the horizon) equal the luminance of `brdf eval --json`
+// at wo = (sin t cos p, sin t sin p, cos t), t = 90 i / (n_theta - 1) degrees, p = 360 j / n_phi degrees.
+function checkLobe3d(s, params, what) {
+  const l = s.lobe3d;
+  assert.equal(l.theta_in, s.lobe.theta_in, what);
+  assert.equal(l.luminance.length, l.n_theta, what);
+  for (const row of l.luminance) assert.equal(row.length, l.n_phi, what);
+  assert.ok(Math.abs(Math.acos(l.wi[2]) - l.theta_in * Math.PI / 180) < 1e-12 && l.wi[1] === 0 && l.wi[0] <= 0, `${what}: wi ${l.wi}`);
+  const mirror = Math.round(l.theta_in / (90 / (l.n_theta - 1)));
+  const p = Object.entries(params).flatMap(([k, v]) => ['-p', `${k}=${v}`]);
+  let positive = 0;
+  for (const [i, j] of [[0, 0], [mirror, 0], [mirror, 3], [9, 9], [12, 30], [l.n_theta - 1, 27]]) {
+    const t = (90 * i / (l.n_theta - 1)) * Math.PI / 180, ph = 2 * Math.PI * j / l.n_phi;
+    const wo = [Math.sin(t) * Math.cos(ph), Math.sin(t) * Math.sin(ph), Math.cos(t)];
+    const ev = cliJson(['brdf', 'eval', s.model, ...p, '--wi', l.wi.join(','), '--wo', wo.join(','), '--json']);
+    relClose([l.luminance[i][j]], [luminance709(ev.f)], `${what} lobe3d[${i}][${j}]`);
+    if (l.luminance[i][j] > 0) ++positive;
+  }
+  assert.ok(positive >= 2, `${what}: lobe3d is ~0 at the points checked`);
+}
+
 function query(c) {
   const q = new URLSearchParams({ model: c.model, ...c.params, theta: c.theta, wi: c.wi, wo: c.wo });
   return '?' + q.toString().replace(/%2C/g, ',');
@@ -91,6 +117,7 @@ test('albedo and probed f_r in the DOM equal the CLI to 1e-12', async () => {
     const ev = cliJson(['brdf', 'eval', c.model, ...p, '--wi', c.wi, '--wo', c.wo, '--json']);
     relClose(s.probe.f, ev.f, `${c.model} f`);
     assert.deepEqual(s.probe.wi, c.wi.split(',').map(Number));
+    checkLobe3d(s, c.params, c.model);
   }
   // The zoo table at the model's exponent is the CLI's.
   const s = await open(query(CASES[0]));
@@ -145,6 +172,7 @@ test('the URL state round-trips', async () => {
   assert.deepEqual(again, first);
   assert.equal(first.view.units, 'radiometric');
   assert.equal(first.lobe.theta_in, 30);
+  checkLobe3d(first, CASES[1].params, 'theta_in=30');
   // A changed control changes the URL, and the new URL reproduces it.
   const before = await page.evaluate(() => document.body.dataset.ready);
   await page.fill('#shadelab-param-n', '40');

@@ -761,7 +761,8 @@ void main() {
     const thetaIn = Number(v.theta_in);
     const lobe = call(Object.assign({ op: 'lobe', theta_in: thetaIn, times_cos: v.cos === '1', fixed: v.fixed, samples: 361 }, base));
     const a = -thetaIn * Math.PI / 180;
-    const lobe3d = call(Object.assign({ op: 'lobe3d', wi: [Math.sin(a), 0, Math.cos(a)], n_theta: 19, n_phi: 36 }, base));
+    const lobe3dWi = [Math.sin(a), 0, Math.cos(a)];
+    const lobe3d = call(Object.assign({ op: 'lobe3d', wi: lobe3dWi, n_theta: 19, n_phi: 36 }, base));
     const info = modelInfo(state.model);
     const nParam = info.params.find((p) => p.name === 'n' && p.kind === 'scalar');
     const zooN = nParam ? Number(effective('n')) : 100;
@@ -810,6 +811,9 @@ void main() {
       overlays: overlays.map((o) => ({ model: o.model, params: o.params, albedo_curve: { theta: o.albedo_curve.theta, albedo: o.albedo_curve.albedo },
                                        lobe: { angle: o.lobe.angle, luminance: o.lobe.luminance } })),
       lobe: { theta_in: thetaIn, fixed: v.fixed, times_cos: v.cos === '1', angle: lobe.angle, luminance: lobe.luminance },
+      // The 3D lobe as drawn: luminance[i][j] = luminance of f_r(wi, wo), theta_o = 90 i / (n_theta - 1) degrees,
+      // phi_o = 360 j / n_phi degrees (the module's lobe3d answer).
+      lobe3d: { theta_in: thetaIn, wi: lobe3dWi, n_theta: lobe3d.n_theta, n_phi: lobe3d.n_phi, luminance: lobe3d.luminance },
       zoo: { n: zooN, rows: zoo.rows.map((r) => ({ model: r.model, closed_form_value: r.closed_form_value, numeric: r.numeric,
                                                    relative_error: r.relative_error, lower: r.lower, upper: r.upper })) },
       sphere: sphereState, errors: errors.slice(), update_ms: 0,
