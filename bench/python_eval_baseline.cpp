@@ -5,6 +5,14 @@
 //   eval_loop/MODEL:  for each i, out[i] = f->eval(wi[i], wo[i]) (one virtual call per pair).
 // and, for the record, eval_batch_checked/MODEL: the same batch with its unit-length check of every
 // direction, the entry Python's Brdf.eval calls on the arrays in place.
+// The like-for-like baselines of Python's plain eval (no out=), which returns a new (N, 3) array per call:
+//   eval_batch_fresh/MODEL, eval_loop_fresh/MODEL: the same two loops with the output allocated and freed
+//                     in every iteration, as NumPy allocates the result: malloc of 3N doubles, not
+//                     initialized (first written by the model's loop), advised for transparent huge pages
+//                     when >= 4 MiB as NumPy 1.22+ does on Linux (its default allocator), then free.
+// Every column reports `faults`: the minor page faults per iteration (getrusage), so that a run shows
+// whether the fresh output was paged in anew (glibc hands a freed block of this size back from its heap
+// once its mmap threshold has risen; it then costs no page fault, on either side).
 // The script writes the pairs it gives to Python's Brdf.eval into a file and runs this program on the same
 // file, alternating the two in one run.
 //
@@ -13,13 +21,19 @@
 // pairs from a fixed seed. SHADELAB_BENCH_PARAMS: "name=value;name=value".
 #include <benchmark/benchmark.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <new>
 #include <string>
 #include <vector>
+
+#include <sys/mman.h>
+#include <sys/resource.h>
 
 #include "shadelab/brdf/registry.h"
 #include "shadelab/sampling/rng.h"
@@ -35,15 +49,47 @@ std::vector<Vec3> g_wi;
 std::vector<Vec3> g_wo;
 BrdfPtr g_brdf;
 
+long minor_faults() {
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  return r.ru_minflt;
+}
+
+// Minor page faults per iteration over the timed loop (the setup before it excluded).
+void report_faults(benchmark::State& state, long before) {
+  state.counters["faults"] = benchmark::Counter(static_cast<double>(minor_faults() - before),
+                                                benchmark::Counter::kAvgIterations);
+}
+
+struct FreeDeleter {
+  void operator()(void* p) const { std::free(p); }
+};
+
+// A new output of n rows as NumPy's np.empty((n, 3)) makes it (its default data allocator on Linux):
+// malloc, no initialization, and for 4 MiB or more madvise(MADV_HUGEPAGE) from the block's first page
+// boundary to its end.
+std::unique_ptr<Rgb[], FreeDeleter> fresh_output(std::size_t n) {
+  const std::size_t bytes = n * sizeof(Rgb);
+  void* p = std::malloc(bytes);
+  if (p == nullptr) throw std::bad_alloc();
+  if (bytes >= (std::size_t{1} << 22)) {
+    const std::uintptr_t offset = 4096 - reinterpret_cast<std::uintptr_t>(p) % 4096;
+    madvise(static_cast<char*>(p) + offset, bytes - offset, MADV_HUGEPAGE);
+  }
+  return std::unique_ptr<Rgb[], FreeDeleter>(static_cast<Rgb*>(p));
+}
+
 void eval_loop(benchmark::State& state) {
   const Brdf& f = *g_brdf;
   const std::size_t n = g_wi.size();
   std::vector<Rgb> out(n);
+  const long faults = minor_faults();
   for (auto _ : state) {
     for (std::size_t i = 0; i < n; ++i) out[i] = f.eval(g_wi[i], g_wo[i]);
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
+  report_faults(state, faults);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
 }
 
@@ -51,11 +97,41 @@ void eval_batch(benchmark::State& state) {
   const Brdf& f = *g_brdf;
   const std::size_t n = g_wi.size();
   std::vector<Rgb> out(n);
+  const long faults = minor_faults();
   for (auto _ : state) {
     f.eval_batch(g_wi.data(), g_wo.data(), out.data(), n);
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
+  report_faults(state, faults);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
+}
+
+void eval_loop_fresh(benchmark::State& state) {
+  const Brdf& f = *g_brdf;
+  const std::size_t n = g_wi.size();
+  const long faults = minor_faults();
+  for (auto _ : state) {
+    auto out = fresh_output(n);
+    for (std::size_t i = 0; i < n; ++i) out[i] = f.eval(g_wi[i], g_wo[i]);
+    benchmark::DoNotOptimize(out.get());
+    benchmark::ClobberMemory();
+  }
+  report_faults(state, faults);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
+}
+
+void eval_batch_fresh(benchmark::State& state) {
+  const Brdf& f = *g_brdf;
+  const std::size_t n = g_wi.size();
+  const long faults = minor_faults();
+  for (auto _ : state) {
+    auto out = fresh_output(n);
+    f.eval_batch(g_wi.data(), g_wo.data(), out.get(), n);
+    benchmark::DoNotOptimize(out.get());
+    benchmark::ClobberMemory();
+  }
+  report_faults(state, faults);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
 }
 
@@ -63,6 +139,7 @@ void eval_batch_checked(benchmark::State& state) {
   const Brdf& f = *g_brdf;
   const std::size_t n = g_wi.size();
   std::vector<Rgb> out(n);
+  const long faults = minor_faults();
   for (auto _ : state) {
     if (f.eval_batch_checked(g_wi.data(), g_wo.data(), out.data(), n) != n) {
       state.SkipWithError("a direction of the pairs is not unit length");
@@ -71,6 +148,7 @@ void eval_batch_checked(benchmark::State& state) {
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
+  report_faults(state, faults);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
 }
 
@@ -132,6 +210,10 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark(("eval_batch/" + model).c_str(), eval_batch)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark(("eval_loop/" + model).c_str(), eval_loop)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark(("eval_batch_checked/" + model).c_str(), eval_batch_checked)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark(("eval_batch_fresh/" + model).c_str(), eval_batch_fresh)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark(("eval_loop_fresh/" + model).c_str(), eval_loop_fresh)
       ->Unit(benchmark::kMillisecond);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

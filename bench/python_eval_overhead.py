@@ -3,25 +3,29 @@
 
 Both sides evaluate the same N unit-length pairs (written to a file for the C++ program), single-threaded,
 for every registered model. The C++ side (bench/python_eval_baseline.cpp, Google Benchmark) measures the
-two plain ways to do it with the library: Brdf::eval_batch over the arrays (the best) and the loop of
-per-pair eval calls; and, as a column, eval_batch_checked (the same batch checking that each direction is
-unit length), which Python's eval calls on the arrays in place. The sides are alternated ROUNDS times in
-one run, and each ratio is Python's best CPU time over C++'s best CPU time over all rounds (CPU time,
-which other processes on a shared machine distort least; the best time, which they can only lengthen),
-with the median of the per-round ratios beside it. A benchmark, not a test: timings on a shared machine
-vary, the ratio measured in one run is what means something (shared/design/PERFORMANCE.md).
+two plain ways to do it with the library, Brdf::eval_batch over the arrays (the best) and the loop of
+per-pair eval calls, each twice: with the output allocated once (batch, loop) and with a new output
+allocated per call as NumPy allocates Python's result (bfresh, lfresh); eval_batch_checked (the entry
+Python's eval calls on the arrays in place) is a column for the record. Like for like: plain `eval`
+(a new result per call) against bfresh / lfresh, `eval(..., out=)` against batch / loop. The sides are
+alternated ROUNDS times in one run; in each round each side's time is its best CPU time of REPEATS calls
+(CPU time, which other processes on a shared machine distort least; the best, which they can only
+lengthen), and each ratio is reported as the median of the per-round ratios with their range. The minor
+page faults per call of Python's eval and of C++'s eval_batch_fresh are printed too, to show whether the
+fresh result was paged in anew on either side. A benchmark, not a test: timings on a shared machine vary,
+the ratio measured in one run is what means something (shared/design/PERFORMANCE.md).
 
     cmake --build --preset release --target shadelab_python python_eval_baseline
     /usr/bin/python3 bench/python_eval_overhead.py --build build/release
 
-Python's eval does what the C++ calls do not: converts the arrays (no copy for C-contiguous float64),
+Python's eval does what the C++ calls do not: converts the arrays (no copy for C-contiguous float64) and
 checks each direction as the CLI does (unit directions are used in place, checked inside the library's
-loop; from the first that is not, a chunk is copied and normalized), and allocates the (N, 3) result unless out= is given (the C++ output is allocated once, so
-out= is the like-for-like figure). Both are reported.
+loop; from the first that is not, a chunk is copied and normalized).
 """
 import argparse
 import json
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -64,11 +68,15 @@ def main():
     wo = np.ascontiguousarray(cosine_hemisphere(n))
     names = args.model or [m["name"] for m in shadelab.models()]
     models = [(m, PARAMS.get(m, {})) for m in names]
-    print(f"shadelab {shadelab.__version__}: Brdf.eval on {n} pairs, Python (this process) vs C++ ({baseline.name}: "
-          f"eval_batch and the per-pair eval loop); CPU ms, best of {args.repeats} calls per round, {args.rounds} rounds; "
-          f"ratio = Python / C++ (best over rounds), median of per-round ratios in parentheses")
-    print(f"{'model':<26} {'batch ms':>9} {'loop ms':>8} {'checked':>8} {'eval ms':>8} {'/batch':>14} {'/loop':>14} "
-          f"{'out= ms':>8} {'/batch':>14} {'/loop':>14}")
+    print(f"shadelab {shadelab.__version__}: Brdf.eval on {n} pairs, Python (this process) vs C++ ({baseline.name}); "
+          f"CPU ms, best of {args.repeats} calls per round, {args.rounds} rounds (the best over rounds shown). "
+          f"Ratios: per round, Python's best / C++'s best in that round; the median over rounds [lowest-highest]. "
+          f"eval (a new result per call) against the C++ loops that allocate their output per call (bfresh, lfresh); "
+          f"eval(out=) against the loops with the output allocated once (batch, loop). flt: minor page faults per "
+          f"call, Python's eval / C++'s eval_batch_fresh (0: the freed result block was handed back without paging)")
+    print(f"{'model':<26} {'batch':>7} {'loop':>7} {'checked':>7} {'bfresh':>7} {'lfresh':>7} {'eval':>7} "
+          f"{'eval/bfresh':>19} {'eval/lfresh':>19} {'out=':>7} {'out=/batch':>19} {'out=/loop':>19} {'flt':>9}")
+    rows = []
     with tempfile.TemporaryDirectory() as tmp:
         pairs_file = Path(tmp) / "pairs.bin"
         with open(pairs_file, "wb") as fh:
@@ -79,37 +87,61 @@ def main():
             out = np.empty((n, 3))
             env = dict(os.environ, SHADELAB_BENCH_PAIRS=str(pairs_file), SHADELAB_BENCH_MODEL=model,
                        SHADELAB_BENCH_PARAMS=";".join(f"{k}={v}" for k, v in params.items()))
-            batch, loop, checked, py, py_out = [], [], [], [], []
+            cpp = {k: [] for k in ("eval_batch", "eval_loop", "eval_batch_checked", "eval_batch_fresh", "eval_loop_fresh")}
+            cpp_faults = []
+            py, py_out, py_faults = [], [], []
             for _ in range(args.rounds):
                 r = subprocess.run([str(baseline), f"--benchmark_repetitions={args.repeats}",
                                     "--benchmark_format=json", "--benchmark_min_time=0.05"],
                                    env=env, capture_output=True, text=True, check=True)
                 runs = [b for b in json.loads(r.stdout)["benchmarks"] if b.get("run_type") == "iteration"]
-                # ms (Unit(kMillisecond))
-                batch.append(min(b["cpu_time"] for b in runs if b["run_name"].startswith("eval_batch/")))
-                loop.append(min(b["cpu_time"] for b in runs if b["run_name"].startswith("eval_loop/")))
-                checked.append(min(b["cpu_time"] for b in runs if b["run_name"].startswith("eval_batch_checked/")))
-                py.append(best_ms(lambda: f.eval(wi, wo), args.repeats))
-                py_out.append(best_ms(lambda: f.eval(wi, wo, out=out), args.repeats))
+                for key, times in cpp.items():  # ms (Unit(kMillisecond)); run_name is "KEY/MODEL"
+                    times.append(min(b["cpu_time"] for b in runs if b["run_name"].split("/")[0] == key))
+                cpp_faults.append(statistics.median(b["faults"] for b in runs
+                                                    if b["run_name"].split("/")[0] == "eval_batch_fresh"))
+                t, flt = best_ms(lambda: f.eval(wi, wo), args.repeats)
+                py.append(t)
+                py_faults.append(flt)
+                py_out.append(best_ms(lambda: f.eval(wi, wo, out=out), args.repeats)[0])
             assert np.array_equal(f.eval(wi, wo), out)
 
             def ratio(p, c):
-                return f"{min(p) / min(c):6.3f} ({statistics.median(a / b for a, b in zip(p, c)):5.3f})"
+                per_round = [a / b for a, b in zip(p, c)]
+                return (statistics.median(per_round), min(per_round), max(per_round))
+
+            def text(rt):
+                return f"{rt[0]:5.3f} [{rt[1]:5.3f}-{rt[2]:5.3f}]"
 
             label = model + "".join(f" {k}={v}" for k, v in params.items())
-            print(f"{label:<26} {min(batch):9.2f} {min(loop):8.2f} {min(checked):8.2f} {min(py):8.2f} {ratio(py, batch):>14} "
-                  f"{ratio(py, loop):>14} {min(py_out):8.2f} {ratio(py_out, batch):>14} {ratio(py_out, loop):>14}",
-                  flush=True)
+            ratios = [ratio(py, cpp["eval_batch_fresh"]), ratio(py, cpp["eval_loop_fresh"]),
+                      ratio(py_out, cpp["eval_batch"]), ratio(py_out, cpp["eval_loop"])]
+            rows.append((label, ratios))
+            ms = " ".join(f"{min(cpp[k]):7.2f}" for k in ("eval_batch", "eval_loop", "eval_batch_checked",
+                                                          "eval_batch_fresh", "eval_loop_fresh"))
+            flt = f"{statistics.median(py_faults):.0f}/{statistics.median(cpp_faults):.0f}"
+            print(f"{label:<26} {ms} {min(py):7.2f} {text(ratios[0]):>19} {text(ratios[1]):>19} {min(py_out):7.2f} "
+                  f"{text(ratios[2]):>19} {text(ratios[3]):>19} {flt:>9}", flush=True)
+    names = ["eval/bfresh", "eval/lfresh", "out=/batch", "out=/loop"]
+    for i, name in enumerate(names):
+        medians = [r[i][0] for _, r in rows]
+        over = [f"{label} {r[i][0]:.3f}" for label, r in rows if r[i][0] > 1.10]
+        print(f"{name}: median ratio within 1.10 for {len(rows) - len(over)} of {len(rows)} models, "
+              f"median over models {statistics.median(medians):.3f}" + (f"; above: {', '.join(over)}" if over else ""))
 
 
 def best_ms(call, repeats):
+    """The best CPU time of `repeats` calls in ms, and the median minor page faults per call."""
     call()  # warm: page in the arrays, first-touch the result pages
     best = float("inf")
+    faults = []
     for _ in range(repeats):
+        f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
         t0 = time.thread_time()  # CPU time of this thread, as Google Benchmark's cpu_time
         call()
-        best = min(best, time.thread_time() - t0)
-    return best * 1e3
+        t1 = time.thread_time()
+        faults.append(resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0)
+        best = min(best, t1 - t0)
+    return best * 1e3, statistics.median(faults)
 
 
 if __name__ == "__main__":
