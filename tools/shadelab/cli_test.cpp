@@ -31,7 +31,8 @@ TEST(Cli, BrdfListHasEveryModelWithParameters) {
   std::vector<std::string> names;
   for (const auto& m : j["models"]) names.push_back(m["name"]);
   for (const char* want : {"lambert", "phong", "phong-modified", "blinn-phong", "blinn-phong-modified", "cook-torrance",
-                           "minimalist-cook-torrance", "ward", "ward-anisotropic", "lafortune", "wrapped-diffuse"}) {
+                           "minimalist-cook-torrance", "ward", "ward-anisotropic", "lafortune", "wrapped-diffuse",
+                           "ggx", "burley", "filament"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   }
   for (const auto& m : j["models"]) {
@@ -104,6 +105,39 @@ TEST(Cli, BrdfCheckReportsAFailureWithExitCode1) {
   bool energy_failed = false;
   for (const auto& c : j["checks"]) energy_failed = energy_failed || (c["name"] == "energy" && !c["passed"].get<bool>());
   EXPECT_TRUE(energy_failed);
+}
+
+// Issue 10 section 3: the check prints the white furnace (asserted with Kulla-Conty, 1e-3) and every sampler's
+// variance for ggx.
+TEST(Cli, BrdfCheckGgxPrintsFurnaceAndVariance) {
+  const CliRun r = run("brdf check ggx --param ms=kulla-conty --json");
+  EXPECT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["model"], "ggx");
+  EXPECT_TRUE(j["passed"].get<bool>());
+  const auto find = [&](const std::string& name) {
+    for (const auto& c : j["checks"]) {
+      if (c["name"] == name) return c;
+    }
+    ADD_FAILURE() << "no check " << name << " in " << r.out;
+    return nlohmann::json::object();
+  };
+  const auto furnace = find("furnace");
+  ASSERT_TRUE(furnace.contains("figure") && furnace.contains("threshold") && furnace.contains("detail"));
+  EXPECT_TRUE(furnace["passed"].get<bool>());
+  EXPECT_EQ(furnace["threshold"].get<double>(), 1e-3);
+  EXPECT_GE(furnace["figure"].get<double>(), 0.0);
+  EXPECT_LE(furnace["figure"].get<double>(), 1e-3);
+  EXPECT_NE(furnace["detail"].get<std::string>().find("variant f=none kd=0 ks=1"), std::string::npos);
+  const auto variance = find("variance");
+  ASSERT_TRUE(variance.contains("figure") && variance.contains("threshold") && variance.contains("detail"));
+  EXPECT_TRUE(variance["passed"].get<bool>());
+  EXPECT_TRUE(variance["threshold"].is_null());  // reported only
+  EXPECT_GT(variance["figure"].get<double>(), 0.0);
+  const std::string detail = variance["detail"];
+  for (const char* s : {"; ndf: ", "; vndf: ", "; vndf-caps: ", "; vndf-bounded (configured): "}) {
+    EXPECT_NE(detail.find(s), std::string::npos) << s << " in " << detail;
+  }
 }
 
 TEST(Cli, FresnelKnownValues) {

@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
 
 #include "shadelab/analysis/test_brdfs.h"
 
@@ -11,6 +15,7 @@ namespace {
 
 using testing::Broken;
 using testing::broken;
+using testing::view;
 
 // A lighter chi-square than the CLI's default keeps the test quick; the items are the same.
 CheckOptions quick() {
@@ -116,6 +121,142 @@ TEST(Check, BrokenModelsFail) {
   const CheckReport asym = check_brdf(Asymmetric(), quick());
   EXPECT_FALSE(item(asym, "reciprocity").passed);
   EXPECT_GT(item(asym, "reciprocity").figure, 1e-10);
+}
+
+// The integrals of g(f cos, pdf) over the upper hemisphere at wo by a plain midpoint rule in (cos theta_i, phi),
+// d omega = d(cos theta_i) d phi: independent of albedo.h's adaptive quadrature and of the check's sampling.
+// out[k] = integral of (f cos)^(k+1) / pdf^k (largest channel of f): the albedo E, then E[w^2], E[w^3], E[w^4]
+// of the weight w = f cos / pdf (0 below the horizon).
+std::vector<double> midpoint_moments(const Brdf& f, const Vec3& wo, int moments) {
+  constexpr int n_mu = 400;
+  constexpr int n_phi = 400;
+  std::vector<double> sum(static_cast<std::size_t>(moments), 0.0);
+  for (int i = 0; i < n_mu; ++i) {
+    const double mu = (i + 0.5) / n_mu;
+    const double s = std::sqrt(1.0 - mu * mu);
+    for (int j = 0; j < n_phi; ++j) {
+      const double phi = two_pi * (j + 0.5) / n_phi;
+      const Vec3 wi{s * std::cos(phi), s * std::sin(phi), mu};
+      const double fc = f.eval(wi, wo).max_component() * mu;
+      const double p = moments > 1 ? f.pdf(wi, wo) : 1.0;
+      double term = fc;
+      for (int k = 0; k < moments; ++k) {
+        sum[static_cast<std::size_t>(k)] += term;
+        if (p > 0.0) term *= fc / p;
+      }
+    }
+  }
+  for (double& v : sum) v *= (1.0 / n_mu) * (two_pi / n_phi);
+  return sum;
+}
+
+// The furnace figure by that rule: max over the furnace angles of |1 - E|.
+double midpoint_furnace(const Brdf& f, const CheckOptions& o) {
+  double worst = 0.0;
+  for (double t : o.furnace_angles_deg) worst = std::max(worst, std::abs(1.0 - midpoint_moments(f, view(t), 1)[0]));
+  return worst;
+}
+
+// The numbers after "NAME: " in text, up to the next ';' (the variance detail's per-sampler lists).
+std::vector<double> numbers_after(const std::string& text, const std::string& name) {
+  std::vector<double> v;
+  const std::size_t at = text.find("; " + name + ": ");
+  if (at == std::string::npos) return v;
+  const char* p = text.c_str() + at + name.size() + 4;
+  while (*p != '\0' && *p != ';') {
+    char* end = nullptr;
+    const double x = std::strtod(p, &end);
+    if (end == p) break;
+    v.push_back(x);
+    p = end;
+    while (*p == ',' || *p == ' ') ++p;
+  }
+  return v;
+}
+
+// Issue 10 section 3: `brdf check` reports the white furnace and the samplers' variance for the GGX family.
+TEST(Check, GgxFamilyFurnaceAndVariance) {
+  const CheckOptions o = quick();
+  // With Kulla-Conty the furnace is asserted (1e-3), on the F = 1, no-diffuse variant even though the model as
+  // given has Schlick's F (whose albedo is about 0.05): the figure is that variant's, by an independent rule.
+  const auto ms = check_brdf("ggx", {{"alpha", "0.8"}, {"ms", "kulla-conty"}}, o);
+  ASSERT_TRUE(ms) << ms.error().message;
+  const CheckItem& ms_furnace = item(*ms, "furnace");
+  EXPECT_TRUE(ms_furnace.passed) << ms_furnace.detail;
+  EXPECT_EQ(ms_furnace.threshold, o.furnace_tolerance);
+  EXPECT_LE(ms_furnace.figure, 1e-3) << ms_furnace.detail;
+  const BrdfPtr ms_white = testing::make("ggx", {{"alpha", "0.8"}, {"ms", "kulla-conty"}, {"f", "none"}, {"kd", "0"}});
+  EXPECT_NEAR(ms_furnace.figure, midpoint_furnace(*ms_white, o), 2e-4) << ms_furnace.detail;
+  EXPECT_NE(ms_furnace.detail.find("variant f=none kd=0 ks=1"), std::string::npos) << ms_furnace.detail;
+  // Every sampler's variance is listed, the configured one (the default, vndf-bounded) marked.
+  const CheckItem& ms_variance = item(*ms, "variance");
+  EXPECT_TRUE(ms_variance.passed);
+  EXPECT_TRUE(std::isnan(ms_variance.threshold));
+  EXPECT_GT(ms_variance.figure, 0.0);
+  for (const char* s : {"ndf", "vndf", "vndf-caps", "vndf-bounded (configured)"}) {
+    EXPECT_EQ(numbers_after(ms_variance.detail, s).size(), o.angles_deg.size()) << s << ": " << ms_variance.detail;
+  }
+
+  // Without compensation the loss is reported, not asserted, and is > 0 for a rough lobe. The variance figures
+  // of the specular lobe (kd = 0, F = 1) agree per sampler and angle with the weight's variance by quadrature,
+  // E[w^2] - E[w]^2, within 5 standard errors sqrt((E[w^4] - E[w^2]^2) / n).
+  const ParamAssignments lobe = {{"alpha", "0.8"}, {"kd", "0"}, {"f", "none"}};
+  const auto ss = check_brdf("ggx", lobe, o);
+  ASSERT_TRUE(ss) << ss.error().message;
+  const CheckItem& ss_furnace = item(*ss, "furnace");
+  EXPECT_TRUE(ss_furnace.passed);
+  EXPECT_TRUE(std::isnan(ss_furnace.threshold));
+  EXPECT_GT(ss_furnace.figure, 0.0);
+  EXPECT_NEAR(ss_furnace.figure, midpoint_furnace(*testing::make("ggx", lobe), o), 2e-4) << ss_furnace.detail;
+  EXPECT_NE(ss_furnace.detail.find("reported only"), std::string::npos) << ss_furnace.detail;
+  const CheckItem& ss_variance = item(*ss, "variance");
+  double configured_max = 0.0;  // the figure: the configured sampler's largest variance over the angles
+  double configured_se = 0.0;
+  for (const char* s : {"ndf", "vndf", "vndf-caps", "vndf-bounded"}) {
+    const std::string label = std::string(s) == "vndf-bounded" ? "vndf-bounded (configured)" : s;
+    const std::vector<double> listed = numbers_after(ss_variance.detail, label);
+    ASSERT_EQ(listed.size(), o.angles_deg.size()) << s << ": " << ss_variance.detail;
+    ParamAssignments p = lobe;
+    p.emplace_back("sampling", s);
+    const BrdfPtr f = testing::make("ggx", p);
+    for (std::size_t k = 0; k < listed.size(); ++k) {
+      const std::vector<double> m = midpoint_moments(*f, view(o.angles_deg[k]), 4);
+      const double var = m[1] - m[0] * m[0];
+      const double se = std::sqrt(std::max(0.0, m[3] - m[1] * m[1]) / static_cast<double>(o.consistency_samples));
+      EXPECT_NEAR(listed[k], var, 5.0 * se + 1e-4 * var) << s << " theta_o " << o.angles_deg[k];
+      if (label != s) {
+        configured_max = std::max(configured_max, var);
+        configured_se = std::max(configured_se, se);
+      }
+    }
+  }
+  EXPECT_GT(configured_max, 0.0);
+  EXPECT_NEAR(ss_variance.figure, configured_max, 5.0 * configured_se + 1e-4 * configured_max) << ss_variance.detail;
+
+  // Filament: the furnace variant is metallic = 1, base_color = 1 (f0 = 1), whatever the colour given; with
+  // the default energy compensation it is asserted, without it the loss is reported.
+  for (const char* compensation : {"on", "off"}) {
+    const ParamAssignments given = {{"perceptual_roughness", "0.9"}, {"base_color", "0.2,0.5,0.9"},
+                                    {"energy_compensation", compensation}};
+    const auto fil = check_brdf("filament", given, o);
+    ASSERT_TRUE(fil) << fil.error().message;
+    const CheckItem& furnace = item(*fil, "furnace");
+    EXPECT_NE(furnace.detail.find("variant metallic=1 base_color=1"), std::string::npos) << furnace.detail;
+    ParamAssignments white = given;
+    white.emplace_back("metallic", "1");
+    white.emplace_back("base_color", "1");
+    EXPECT_NEAR(furnace.figure, midpoint_furnace(*testing::make("filament", white), o), 2e-4) << furnace.detail;
+    EXPECT_TRUE(furnace.passed) << furnace.detail;
+    if (std::string(compensation) == "on") {
+      EXPECT_EQ(furnace.threshold, o.furnace_tolerance);
+      EXPECT_LE(furnace.figure, 1e-3);
+    } else {
+      EXPECT_TRUE(std::isnan(furnace.threshold));
+      EXPECT_GT(furnace.figure, 0.0);
+    }
+    // One sampler only: no per-sampler list.
+    EXPECT_EQ(item(*fil, "variance").detail.find("per sampler"), std::string::npos);
+  }
 }
 
 TEST(Check, Errors) {

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "shadelab/analysis/albedo.h"
 #include "shadelab/analysis/chi_square.h"
@@ -205,31 +207,42 @@ TEST(GgxVariance, MeasuredVarianceAgreesWithQuadrature) {
   }
 }
 
-// No NaN/Inf/negative values down to alpha = 1e-4 with grazing directions (|z| < 1e-4) for every sampler.
+// No NaN/Inf/negative values down to alpha = 1e-4 with grazing directions (|z| < 1e-4) for every sampler, and
+// for the family's other GGX users at the same alpha: filament (alpha = perceptual_roughness^2 = 1e-4, its
+// bounded VNDF sampler) and cook-torrance d=ggx (its own NDF sampler and pdf).
 TEST(GgxStress, FiniteAtTinyAlphaAndGrazingAngles) {
+  std::vector<std::pair<std::string, ParamAssignments>> models;
   for (const char* s : samplers) {
     for (const char* ms : {"none", "kulla-conty"}) {
       if (std::string(ms) == "kulla-conty" && std::string(s) != "vndf-bounded") continue;
-      const BrdfPtr f = make("ggx", {{"kd", "0.1"}, {"alpha", "1e-4"}, {"sampling", s}, {"ms", ms}});
-      Pcg32 rng(0x5eed, 3);
-      int bad = 0;
-      for (int i = 0; i < 1'000'000; ++i) {
-        const double phi_o = two_pi * rng.next_double();
-        const double phi_i = two_pi * rng.next_double();
-        const double zo = i % 2 == 0 ? 1e-4 * rng.next_double() : rng.next_double();
-        const double zi = i % 3 == 0 ? 1e-4 * rng.next_double() : 2.0 * rng.next_double() - 1.0;
-        const Vec3 wo = spherical_direction(std::sqrt(1.0 - zo * zo), zo, phi_o);
-        const Vec3 wi = spherical_direction(std::sqrt(1.0 - zi * zi), zi, phi_i);
-        const Rgb v = f->eval(wi, wo);
-        const double p = f->pdf(wi, wo);
-        const BrdfSample smp = f->sample(wo, {rng.next_double(), rng.next_double()}, rng.next_double());
-        if (!is_finite(v) || v.r < 0.0 || !std::isfinite(p) || p < 0.0 || !is_finite(smp.weight) || smp.weight.r < 0.0 ||
-            !std::isfinite(smp.pdf)) {
-          ++bad;
-        }
-      }
-      EXPECT_EQ(bad, 0) << s << " ms " << ms;
+      models.push_back({"ggx", {{"kd", "0.1"}, {"alpha", "1e-4"}, {"sampling", s}, {"ms", ms}}});
     }
+  }
+  models.push_back({"filament", {{"perceptual_roughness", "0.01"}}});
+  models.push_back({"filament", {{"perceptual_roughness", "0.01"}, {"metallic", "1"}, {"diffuse", "burley"}}});
+  models.push_back({"cook-torrance", {{"kd", "0.1"}, {"d", "ggx"}, {"m", "1e-4"}}});
+  for (const auto& [model, params] : models) {
+    const BrdfPtr f = make(model, params);
+    Pcg32 rng(0x5eed, 3);
+    int bad = 0;
+    for (int i = 0; i < 1'000'000; ++i) {
+      const double phi_o = two_pi * rng.next_double();
+      const double phi_i = two_pi * rng.next_double();
+      const double zo = i % 2 == 0 ? 1e-4 * rng.next_double() : rng.next_double();
+      const double zi = i % 3 == 0 ? 1e-4 * rng.next_double() : 2.0 * rng.next_double() - 1.0;
+      const Vec3 wo = spherical_direction(std::sqrt(1.0 - zo * zo), zo, phi_o);
+      const Vec3 wi = spherical_direction(std::sqrt(1.0 - zi * zi), zi, phi_i);
+      const Rgb v = f->eval(wi, wo);
+      const double p = f->pdf(wi, wo);
+      const BrdfSample smp = f->sample(wo, {rng.next_double(), rng.next_double()}, rng.next_double());
+      if (!is_finite(v) || v.r < 0.0 || !std::isfinite(p) || p < 0.0 || !is_finite(smp.weight) || smp.weight.r < 0.0 ||
+          !std::isfinite(smp.pdf)) {
+        ++bad;
+      }
+    }
+    std::string text = model;
+    for (const auto& [k, v] : params) text += " " + k + "=" + v;
+    EXPECT_EQ(bad, 0) << text;
   }
 }
 

@@ -1,4 +1,5 @@
-// The statistical suite over EVERY model in the registry (brdf_models()), with 2-4 parameter sets each:
+// The statistical suite over EVERY model in the registry (brdf_models()), with 2-4 parameter sets each (5 for
+// cook-torrance, whose d=ggx set runs its own GGX sampler):
 // defaults, plus sharp / rough variants chosen from the parameters a model declares (n, alpha, alpha_x/y, m,
 // w, lobes), so a model added to the registry is covered without touching this file. Per set: finite,
 // non-negative values over 1e6 random direction pairs (grazing and below-horizon ones included), reciprocity,
@@ -125,6 +126,8 @@ std::vector<ParamSet> param_sets() {
     if (!sharp.empty()) mine.push_back({m.name, "sharp", sharp, false});
     if (!rough.empty()) mine.push_back({m.name, "rough", rough, false});
     if (!extra.empty()) mine.push_back({m.name, "extra", extra, false});
+    // Cook-Torrance with GGX's D: its own NDF sampler and pdf (cook_torrance.cpp), and GGX's Smith G.
+    if (m.name == "cook-torrance") mine.push_back({m.name, "ggx", {{"kd", "0"}, {"d", "ggx"}, {"m", "0.05"}}, false});
     for (auto& s : mine) s.conserves_energy = known_to_conserve(s, m);
     sets.insert(sets.end(), mine.begin(), mine.end());
   }
@@ -295,8 +298,15 @@ TEST(ModelsSuite, CoversEveryRegisteredModel) {
   for (const ModelInfo& m : brdf_models()) {
     const auto n = std::count_if(all_sets().begin(), all_sets().end(), [&](const ParamSet& s) { return s.model == m.name; });
     EXPECT_GE(n, 2) << m.name;
-    EXPECT_LE(n, 4) << m.name;
+    EXPECT_LE(n, m.name == "cook-torrance" ? 5 : 4) << m.name;  // cook-torrance: one set per D (d=ggx the fifth)
   }
+  // Cook-Torrance's GGX distribution is in the suite, and asserted to conserve energy (kd = 0, microfacet form).
+  const auto ct_ggx = std::find_if(all_sets().begin(), all_sets().end(), [](const ParamSet& s) {
+    const std::pair<std::string, std::string> d_ggx{"d", "ggx"};
+    return s.model == "cook-torrance" && std::find(s.params.begin(), s.params.end(), d_ggx) != s.params.end();
+  });
+  ASSERT_NE(ct_ggx, all_sets().end());
+  EXPECT_TRUE(ct_ggx->conserves_energy);
   // The energy assertion is not vacuous: the zoo models' normalized sets are asserted.
   const auto asserted = std::count_if(all_sets().begin(), all_sets().end(), [](const ParamSet& s) { return s.conserves_energy; });
   EXPECT_GE(asserted, 10);
