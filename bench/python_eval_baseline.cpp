@@ -30,6 +30,8 @@
 #include <memory>
 #include <new>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <sys/mman.h>
@@ -79,73 +81,50 @@ std::unique_ptr<Rgb[], FreeDeleter> fresh_output(std::size_t n) {
   return std::unique_ptr<Rgb[], FreeDeleter>(static_cast<Rgb*>(p));
 }
 
-void eval_loop(benchmark::State& state) {
-  const Brdf& f = *g_brdf;
-  const std::size_t n = g_wi.size();
-  std::vector<Rgb> out(n);
-  const long faults = minor_faults();
-  for (auto _ : state) {
+// How a column fills the output: one virtual call per pair, the batch entry, or the batch entry with its
+// unit-length check (false when a direction is not unit length).
+struct PerPair {
+  static bool fill(const Brdf& f, Rgb* out, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) out[i] = f.eval(g_wi[i], g_wo[i]);
-    benchmark::DoNotOptimize(out.data());
-    benchmark::ClobberMemory();
+    return true;
   }
-  report_faults(state, faults);
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
-}
+};
+struct Batch {
+  static bool fill(const Brdf& f, Rgb* out, std::size_t n) {
+    f.eval_batch(g_wi.data(), g_wo.data(), out, n);
+    return true;
+  }
+};
+struct BatchChecked {
+  static bool fill(const Brdf& f, Rgb* out, std::size_t n) {
+    return f.eval_batch_checked(g_wi.data(), g_wo.data(), out, n) == n;
+  }
+};
 
-void eval_batch(benchmark::State& state) {
+// How a column gets its output: allocated once before the timed loop (Reused), or anew in every iteration
+// as NumPy allocates a result (Fresh).
+struct Reused {};
+struct Fresh {};
+
+// One body for every column: the output obtained as Output says, filled as Fill says.
+template <class Output, class Fill>
+void eval_column(benchmark::State& state) {
   const Brdf& f = *g_brdf;
   const std::size_t n = g_wi.size();
-  std::vector<Rgb> out(n);
+  std::vector<Rgb> reused(std::is_same_v<Output, Reused> ? n : 0);
   const long faults = minor_faults();
   for (auto _ : state) {
-    f.eval_batch(g_wi.data(), g_wo.data(), out.data(), n);
-    benchmark::DoNotOptimize(out.data());
-    benchmark::ClobberMemory();
-  }
-  report_faults(state, faults);
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
-}
-
-void eval_loop_fresh(benchmark::State& state) {
-  const Brdf& f = *g_brdf;
-  const std::size_t n = g_wi.size();
-  const long faults = minor_faults();
-  for (auto _ : state) {
-    auto out = fresh_output(n);
-    for (std::size_t i = 0; i < n; ++i) out[i] = f.eval(g_wi[i], g_wo[i]);
-    benchmark::DoNotOptimize(out.get());
-    benchmark::ClobberMemory();
-  }
-  report_faults(state, faults);
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
-}
-
-void eval_batch_fresh(benchmark::State& state) {
-  const Brdf& f = *g_brdf;
-  const std::size_t n = g_wi.size();
-  const long faults = minor_faults();
-  for (auto _ : state) {
-    auto out = fresh_output(n);
-    f.eval_batch(g_wi.data(), g_wo.data(), out.get(), n);
-    benchmark::DoNotOptimize(out.get());
-    benchmark::ClobberMemory();
-  }
-  report_faults(state, faults);
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
-}
-
-void eval_batch_checked(benchmark::State& state) {
-  const Brdf& f = *g_brdf;
-  const std::size_t n = g_wi.size();
-  std::vector<Rgb> out(n);
-  const long faults = minor_faults();
-  for (auto _ : state) {
-    if (f.eval_batch_checked(g_wi.data(), g_wo.data(), out.data(), n) != n) {
+    std::unique_ptr<Rgb[], FreeDeleter> fresh;
+    Rgb* out = reused.data();
+    if constexpr (std::is_same_v<Output, Fresh>) {
+      fresh = fresh_output(n);
+      out = fresh.get();
+    }
+    if (!Fill::fill(f, out, n)) {
       state.SkipWithError("a direction of the pairs is not unit length");
       break;
     }
-    benchmark::DoNotOptimize(out.data());
+    benchmark::DoNotOptimize(out);
     benchmark::ClobberMemory();
   }
   report_faults(state, faults);
@@ -207,14 +186,16 @@ int main(int argc, char** argv) {
       g_wo.push_back(sample_cosine_hemisphere({rng.next_double(), rng.next_double()}));
     }
   }
-  benchmark::RegisterBenchmark(("eval_batch/" + model).c_str(), eval_batch)->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark(("eval_loop/" + model).c_str(), eval_loop)->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark(("eval_batch_checked/" + model).c_str(), eval_batch_checked)
-      ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark(("eval_batch_fresh/" + model).c_str(), eval_batch_fresh)
-      ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark(("eval_loop_fresh/" + model).c_str(), eval_loop_fresh)
-      ->Unit(benchmark::kMillisecond);
+  const std::pair<const char*, void (*)(benchmark::State&)> columns[] = {
+      {"eval_batch/", eval_column<Reused, Batch>},
+      {"eval_loop/", eval_column<Reused, PerPair>},
+      {"eval_batch_checked/", eval_column<Reused, BatchChecked>},
+      {"eval_batch_fresh/", eval_column<Fresh, Batch>},
+      {"eval_loop_fresh/", eval_column<Fresh, PerPair>},
+  };
+  for (const auto& [prefix, column] : columns) {
+    benchmark::RegisterBenchmark((prefix + model).c_str(), column)->Unit(benchmark::kMillisecond);
+  }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;
