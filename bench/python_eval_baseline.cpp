@@ -10,6 +10,8 @@
 //                     in every iteration, as NumPy allocates the result: malloc of 3N doubles, not
 //                     initialized (first written by the model's loop), advised for transparent huge pages
 //                     when >= 4 MiB as NumPy 1.22+ does on Linux (its default allocator), then free.
+//   eval_checked_fresh/MODEL: eval_batch_checked with the output allocated per call: exactly the C++ call
+//                     Python's plain eval makes, so eval / this is the binding's own overhead.
 // Every column reports `faults`: the minor page faults per iteration (getrusage), so that a run shows
 // whether the fresh output was paged in anew (glibc hands a freed block of this size back from its heap
 // once its mmap threshold has risen; it then costs no page fault, on either side).
@@ -192,6 +194,7 @@ int main(int argc, char** argv) {
       {"eval_batch_checked/", eval_column<Reused, BatchChecked>},
       {"eval_batch_fresh/", eval_column<Fresh, Batch>},
       {"eval_loop_fresh/", eval_column<Fresh, PerPair>},
+      {"eval_checked_fresh/", eval_column<Fresh, BatchChecked>},
   };
   for (const auto& [prefix, column] : columns) {
     benchmark::RegisterBenchmark((prefix + model).c_str(), column)->Unit(benchmark::kMillisecond);

@@ -72,7 +72,8 @@ def main():
           f"CPU ms, best of {args.repeats} calls per round, {args.rounds} rounds (the best over rounds shown). "
           f"Ratios: per round, Python's best / C++'s best in that round; the median over rounds [lowest-highest]. "
           f"eval (a new result per call) against the C++ loops that allocate their output per call (bfresh, lfresh); "
-          f"eval(out=) against the loops with the output allocated once (batch, loop). flt: minor page faults per "
+          f"eval(out=) against the loops with the output allocated once (batch, loop); eval/cfresh and out=/checked: "
+          f"against the very C++ call Python's eval makes (eval_batch_checked, output fresh or reused). flt: minor page faults per "
           f"call, Python's eval / C++'s eval_batch_fresh (0: the freed result block was handed back without paging)")
     print(f"{'model':<26} {'batch':>7} {'loop':>7} {'checked':>7} {'bfresh':>7} {'lfresh':>7} {'eval':>7} "
           f"{'eval/bfresh':>19} {'eval/lfresh':>19} {'out=':>7} {'out=/batch':>19} {'out=/loop':>19} {'flt':>9}")
@@ -87,7 +88,8 @@ def main():
             out = np.empty((n, 3))
             env = dict(os.environ, SHADELAB_BENCH_PAIRS=str(pairs_file), SHADELAB_BENCH_MODEL=model,
                        SHADELAB_BENCH_PARAMS=";".join(f"{k}={v}" for k, v in params.items()))
-            cpp = {k: [] for k in ("eval_batch", "eval_loop", "eval_batch_checked", "eval_batch_fresh", "eval_loop_fresh")}
+            cpp = {k: [] for k in ("eval_batch", "eval_loop", "eval_batch_checked", "eval_batch_fresh", "eval_loop_fresh",
+                                        "eval_checked_fresh")}
             cpp_faults = []
             py, py_out, py_faults = [], [], []
             for _ in range(args.rounds):
@@ -114,14 +116,15 @@ def main():
 
             label = model + "".join(f" {k}={v}" for k, v in params.items())
             ratios = [ratio(py, cpp["eval_batch_fresh"]), ratio(py, cpp["eval_loop_fresh"]),
-                      ratio(py_out, cpp["eval_batch"]), ratio(py_out, cpp["eval_loop"])]
+                      ratio(py_out, cpp["eval_batch"]), ratio(py_out, cpp["eval_loop"]),
+                      ratio(py, cpp["eval_checked_fresh"]), ratio(py_out, cpp["eval_batch_checked"])]
             rows.append((label, ratios))
             ms = " ".join(f"{min(cpp[k]):7.2f}" for k in ("eval_batch", "eval_loop", "eval_batch_checked",
                                                           "eval_batch_fresh", "eval_loop_fresh"))
             flt = f"{statistics.median(py_faults):.0f}/{statistics.median(cpp_faults):.0f}"
             print(f"{label:<26} {ms} {min(py):7.2f} {text(ratios[0]):>19} {text(ratios[1]):>19} {min(py_out):7.2f} "
-                  f"{text(ratios[2]):>19} {text(ratios[3]):>19} {flt:>9}", flush=True)
-    names = ["eval/bfresh", "eval/lfresh", "out=/batch", "out=/loop"]
+                  f"{text(ratios[2]):>19} {text(ratios[3]):>19} {flt:>9} {text(ratios[4]):>19} {text(ratios[5]):>19}", flush=True)
+    names = ["eval/bfresh", "eval/lfresh", "out=/batch", "out=/loop", "eval/cfresh", "out=/checked"]
     for i, name in enumerate(names):
         medians = [r[i][0] for _, r in rows]
         over = [f"{label} {r[i][0]:.3f}" for label, r in rows if r[i][0] > 1.10]
