@@ -14,9 +14,12 @@ convention) only for its own build and run, so other work interleaves.
 
 Usage (from the repository root, after a ci build):
   /usr/bin/python3 scripts/mutate.py [--count N] [--seed S] [--only brdf|envmap] [--list] [--named-only]
-                                     [--range FIRST:LAST]
+                                     [--range FIRST:LAST] [--sites-at COMMIT]
 The sites are enumerated deterministically; --count N picks N of them with a fixed seed (default: all);
---range runs a part of that list (1-based, inclusive), so a pass can be split over several sittings.
+--range runs a part of that list (1-based, inclusive), so a pass can be split over several sittings;
+--sites-at COMMIT draws the list from the files as they were at COMMIT (so a later sitting finishes the same
+sample after the sources moved) and applies each mutant to the same line text today (a line that no longer
+exists is "gone", not counted).
 Exit code: 0 always after a complete pass (the score is a measurement, not a gate); 2 on bad usage.
 """
 import argparse
@@ -99,19 +102,35 @@ def named_smith_mutant():
     return None
 
 
-def sites(module):
+def source_files(folder, ext, at):
+    """(name, text) of the files of folder ending in ext: the working tree's, or those of commit `at`."""
+    if at is None:
+        d = os.path.join(ROOT, folder)
+        for name in sorted(os.listdir(d)):
+            if name.endswith(ext):
+                with open(os.path.join(d, name)) as f:
+                    yield name, f.read()
+        return
+    names = subprocess.run(["git", "ls-tree", "--name-only", at, folder + "/"], cwd=ROOT, check=True,
+                           stdout=subprocess.PIPE).stdout.decode().split("\n")
+    for path in sorted(n for n in names if n.endswith(ext)):
+        text = subprocess.run(["git", "show", f"{at}:{path}"], cwd=ROOT, check=True, stdout=subprocess.PIPE).stdout
+        yield os.path.basename(path), text.decode()
+
+
+def sites(module, at=None):
+    """Every mutant of the module's files, in a fixed order; with `at`, of the files as they were at that
+    commit (so a seeded sample drawn then is drawn again: --sites-at)."""
     cfg = MODULES[module]
     found = []
     for folder, ext in cfg["globs"]:
-        d = os.path.join(ROOT, folder)
-        for name in sorted(os.listdir(d)):
-            if not name.endswith(ext) or name.endswith("_test.cpp") or name in cfg["skip_files"]:
+        for name, text in source_files(folder, ext, at):
+            if name.endswith("_test.cpp") or name in cfg["skip_files"]:
                 continue
             if ext == ".sl" and "only_files" in cfg and name not in cfg["only_files"]:
                 continue
             rel = os.path.join(folder, name)
-            with open(os.path.join(ROOT, rel)) as f:
-                lines = f.read().split("\n")
+            lines = text.split("\n")
             for i, line in enumerate(lines):
                 code = code_part(line)
                 if code is None:
@@ -121,6 +140,17 @@ def sites(module):
                         new = line[: m.start()] + repl + line[m.end():]
                         found.append((module, rel, i, line, new, label))
     return found
+
+
+def locate(rel, index, line):
+    """The line's index in today's file: the same text nearest to where it was, or None when it is gone."""
+    path = os.path.join(ROOT, rel)
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        lines = f.read().split("\n")
+    hits = [i for i, l in enumerate(lines) if l == line]
+    return min(hits, key=lambda i: abs(i - index)) if hits else None
 
 
 # Files that serve several models (or none of the registry's) are judged by every model's defaults set.
@@ -187,6 +217,9 @@ def main():
     ap.add_argument("--list", action="store_true")
     ap.add_argument("--named-only", action="store_true")
     ap.add_argument("--range", default="", help="FIRST:LAST, 1-based, of the chosen list: a pass in parts")
+    ap.add_argument("--sites-at", default=None, metavar="COMMIT",
+                    help="enumerate the sites in the files as they were at COMMIT (the sample of an earlier "
+                         "pass); each mutant is applied to the same line text in today's file")
     a = ap.parse_args()
     modules = [a.only] if a.only else sorted(MODULES)
     chosen = []
@@ -213,7 +246,7 @@ def main():
     if not a.named_only:
         pool = []
         for m in modules:
-            pool += sites(m)
+            pool += sites(m, a.sites_at)
         if a.count and a.count < len(pool):
             pool = sorted(random.Random(a.seed).sample(pool, a.count), key=lambda s: (s[1], s[2]))
         chosen += pool
@@ -229,11 +262,18 @@ def main():
             print(f"--range: expected FIRST:LAST with 1 <= FIRST <= LAST, got '{a.range}'", file=sys.stderr)
             return 2
         first, last = int(m.group(1)), min(int(m.group(2)), len(chosen))
-    tally = {"killed": 0, "survived": 0, "stillborn": 0}
+    tally = {"killed": 0, "survived": 0, "stillborn": 0, "gone": 0}
     start = time.time()
     for k, (module, rel, i, line, new, label) in enumerate(chosen):
         if not first <= k + 1 <= last:
             continue
+        if a.sites_at is not None:
+            now = locate(rel, i, line)
+            if now is None:
+                tally["gone"] += 1
+                print(f"[{k + 1}/{len(chosen)}] gone      {rel}:{i + 1}: {label}: the line is no longer there", flush=True)
+                continue
+            i = now
         verdict, by = judge(module, rel, i, new)
         tally[verdict] += 1
         print(f"[{k + 1}/{len(chosen)}] {verdict:9s} {rel}:{i + 1}: {label}: {new.strip()}" + (f"  ({by})" if by else ""),
@@ -244,7 +284,8 @@ def main():
         targets = sorted({t for m in modules for t in MODULES[m]["targets"]})
         run(["cmake", "--build", BUILD, "-j2", "--target"] + targets)
     counted = tally["killed"] + tally["survived"]
-    print(f"mutation score: {tally['killed']}/{counted} killed ({tally['stillborn']} stillborn, not counted), "
+    print(f"mutation score: {tally['killed']}/{counted} killed ({tally['stillborn']} stillborn, {tally['gone']} gone, "
+          "not counted), "
           f"{time.time() - start:.0f} s")
     return 0
 
