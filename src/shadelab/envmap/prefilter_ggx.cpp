@@ -170,6 +170,16 @@ Rgb GgxFilter::eval(const Vec3& r, const std::vector<Sample>& samples) const {
   return weight > 0.0 ? sum / weight : Rgb{};
 }
 
+namespace {
+
+// Whether the level of face n is the exact sum over the input (header: "Coarse levels"). Cost: 6 n^2 output
+// texels x 6 N^2 input texels, summed over the exact levels (n, n/2, ...) at most 36 n^2 N^2 4/3; sampling
+// the whole chain costs about 8 taps x samples x 6 (N/2)^2 4/3 = 16 samples N^2: 3 n^2 <= samples keeps the
+// exact sums below the sampling's cost, whatever the input size.
+bool exact_level(int n, int samples) { return 3.0 * n * n <= static_cast<double>(samples); }
+
+}  // namespace
+
 GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOptions& o) {
   const int size = radiance.size;
   if (size < 1) throw std::invalid_argument("radiance: the input cube map is empty");
@@ -202,12 +212,18 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
 
   out.levels.push_back(radiance);  // r_0 = 0: the delta lobe, the input itself
   out.roughness.push_back(out.mapping.roughness(0));
+  out.exact.push_back(false);
   for (int i = 1; i < levels; ++i) {
     const int n = std::max(1, size >> i);
     const double r = out.mapping.roughness(i);
-    const std::vector<GgxFilter::Sample> samples = filter.make_samples(r);
+    // Exact summation over a pyramid level where it costs about what the sampling does (header: Method).
+    const bool exact = exact_level(n, o.samples);
+    const std::vector<GgxFilter::Sample> samples = exact ? std::vector<GgxFilter::Sample>{} : filter.make_samples(r);
     CubeMap level(n);
-    const auto texel = [&](int face, int x, int y) { return filter.eval(texel_direction(face, x, y, n), samples); };
+    const auto texel = [&](int face, int x, int y) {
+      const Vec3 d = texel_direction(face, x, y, n);
+      return exact ? prefilter_ggx_brute_force(radiance, d, r) : filter.eval(d, samples);
+    };
     const int rows = 6 * n;
     const int chunk = std::max(1, rows / 20);
     for (int start = 0; start < rows; start += chunk) {
@@ -224,6 +240,7 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
     }
     out.levels.push_back(std::move(level));
     out.roughness.push_back(r);
+    out.exact.push_back(exact);
   }
   return out;
 }

@@ -19,7 +19,12 @@
 //   angle and Omega_p = 4 pi / (6 N^2) the mean solid angle of an input texel; trilinear between pyramid
 //   levels, bilinear inside one with taps that cross face edges (a tap past an edge reads the texel of the
 //   neighbouring face that its direction falls in; a tap past a corner, the mean of the three texels
-//   meeting there), so there are no seams.
+//   meeting there), so there are no seams. Coarse levels are summed exactly instead: the formula above over
+//   every input texel with its solid angle (prefilter_ggx_brute_force), for every level of face n with
+//   3 n^2 <= samples, which keeps those sums together below the cost of sampling the chain (512 samples:
+//   faces 8 and below; 1024: 16 and below). Sampling misses or over-weights small bright sources (a sun, a
+//   studio light) on the coarse levels, where a sample's footprint is large: the exact sum has no such error.
+//   GgxPrefilteredCube::exact says which levels.
 // - Deterministic: the same options give the same bits for any thread count (TBB over rows, fixed samples).
 // - Errors throw std::invalid_argument naming the option: levels < 0 or > log2(size) + 1 ("levels"), a face
 //   size that is not a power of two with more than one level ("size"), samples < 1 or > 2^20 ("samples"),
@@ -66,6 +71,7 @@ struct GgxPrefilteredCube {
   std::vector<CubeMap> levels;
   GgxMipMapping mapping;
   std::vector<double> roughness;  // perceptual roughness of each level
+  std::vector<bool> exact;        // per level: summed exactly over the input (true) or sampled
   int samples = 0;
 };
 
