@@ -290,11 +290,16 @@ GgxPrefilteredCube bake_ggx_chain(const CubeMap& env, int levels, GgxRoughnessMa
 }
 
 nlohmann::json ggx_mip_mapping_json(const GgxPrefilteredCube& chain) {
+  nlohmann::json exact = nlohmann::json::array();  // the levels summed over every input texel instead of sampled
+  for (std::size_t i = 0; i < chain.exact.size(); ++i) {
+    if (chain.exact[i]) exact.push_back(i);
+  }
   return {{"lobe", "ggx"},
           {"kernel", "GGX D(h) with alpha = r^2 (r the perceptual roughness), n = v = R (Karis 2013), normalized by "
                      "the integral of D(h) max(R.l, 0): a constant stays constant"},
           {"method", "filtered importance sampling (Krivanek & Colbert 2008), Hammersley half vectors"},
           {"samples", chain.samples},
+          {"exact_levels", exact},
           {"mapping", chain.mapping.name()},
           {"formula", chain.mapping.formula()},
           {"levels", chain.levels.size()},

@@ -129,7 +129,11 @@ void run_shard(const RenderCliOptions& o, const Scene& scene, RenderOptions ro) 
         fmt::print("{}: {} already in {}, skipped\n", scene.source, label, out.string());
       }
       std::fflush(stdout);
-      if (old->nonfinite_samples > 0) std::exit(1);
+      if (old->nonfinite_samples > 0) {
+        std::cerr << "shadelab: " << out.string() << ": " << label << " holds " << old->nonfinite_samples
+                  << " samples that were NaN or infinite (NaN pixels in the part); the render is wrong\n";
+        std::exit(1);
+      }
       return;
     }
     warn("'" + out.string() + "' exists but is not " + label + " of this render (" +
