@@ -20,6 +20,9 @@ The sites are enumerated deterministically; --count N picks N of them with a fix
 --sites-at COMMIT draws the list from the files as they were at COMMIT (so a later sitting finishes the same
 sample after the sources moved) and applies each mutant to the same line text today (a line that no longer
 exists is "gone", not counted).
+Run it from a checkout where scripts/setup.sh ran (its npm ci puts the independent KTX2 reader in
+tools/containers/node_modules): in a fresh worktree without it, the tests that call that reader fail on the
+unmutated code and "kill" every mutant that reaches them.
 Exit code: 0 always after a complete pass (the score is a measurement, not a gate); 2 on bad usage.
 """
 import argparse
