@@ -10,7 +10,7 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 scene=${1:-$here/scenes/cornell.json}
 n=${2:-$(nproc)}
 repeat=${REPEAT:-3}
-spp=${SPP:-16}
+spp=${SPP:-64}  # long enough that the fixed costs (start, scene load, part write, merge: ~0.5 s) are not the measure
 shadelab=${SHADELAB:-$here/build/ci/tools/shadelab/shadelab}
 work=$(mktemp -d "${TMPDIR:-/tmp}/shadelab_scale_XXXXXX")
 trap 'rm -rf "$work"' EXIT
