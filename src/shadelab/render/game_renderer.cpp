@@ -21,6 +21,7 @@
 #include "shadelab/envmap/irradiance.h"
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/envmap/prefilter_ggx.h"
+#include "shadelab/render/camera_model.h"
 #include "shadelab/envmap/sh.h"
 #include "shadelab/kernels/kernels.h"
 #include "shadelab/brdf/game_lobe.h"
@@ -304,11 +305,7 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
   if (auto ok = shader.prepare(); !ok) return ok.error();
   const int w = scene.camera.width;
   const int h = scene.camera.height;
-  const Vec3 forward = normalize(scene.camera.look_at - scene.camera.position);
-  const Vec3 right = normalize(cross(forward, scene.camera.up));
-  const Vec3 up = cross(right, forward);
-  const double tan_half = std::tan(0.5 * deg_to_rad(scene.camera.vfov_deg));
-  const double aspect = static_cast<double>(w) / h;
+  const CameraModel camera(scene.camera);
   const int spp_side = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, options.spp)))));
   RenderResult result;
   result.beauty = Image(w, h);
@@ -325,9 +322,7 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
             for (int i = 0; i < spp_side; ++i) {
               const double px = x + (i + 0.5) / spp_side;
               const double py = y + (j + 0.5) / spp_side;
-              const double sx = (2.0 * px / w - 1.0) * tan_half * aspect;
-              const double sy = (1.0 - 2.0 * py / h) * tan_half;
-              const Rgb l = shader.shade(Ray{scene.camera.position, normalize(forward + right * sx + up * sy)});
+              const Rgb l = shader.shade(camera.ray(px, py));
               if (!is_finite(l)) nonfinite.fetch_add(1, std::memory_order_relaxed);
               sum += l;
             }

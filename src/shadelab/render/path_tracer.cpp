@@ -14,6 +14,7 @@
 #include "shadelab/core/constants.h"
 #include "shadelab/core/frame.h"
 #include "shadelab/render/accel.h"
+#include "shadelab/render/camera_model.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/materials.h"
 #include "shadelab/render/threads.h"
@@ -430,25 +431,6 @@ Rgb Integrator::li(Ray ray, bool camera_found, const Hit& camera_hit, const Pixe
   }
   return radiance;
 }
-
-struct CameraModel {
-  Vec3 origin, forward, right, up;
-  double tan_half = 0.0;
-  double aspect = 1.0;
-  int width = 1, height = 1;
-  explicit CameraModel(const Camera& c) : origin(c.position), width(c.width), height(c.height) {
-    forward = normalize(c.look_at - c.position);
-    right = normalize(cross(forward, c.up));
-    up = cross(right, forward);
-    tan_half = std::tan(0.5 * deg_to_rad(c.vfov_deg));
-    aspect = static_cast<double>(c.width) / c.height;
-  }
-  Ray ray(double px, double py) const {
-    const double sx = (2.0 * px / width - 1.0) * tan_half * aspect;
-    const double sy = (1.0 - 2.0 * py / height) * tan_half;
-    return {origin, normalize(forward + right * sx + up * sy)};
-  }
-};
 
 }  // namespace
 

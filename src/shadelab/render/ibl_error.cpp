@@ -1,0 +1,214 @@
+// shadelab IBL error maps (ibl_error.h): path tracer against the game renderer's split sum and SH9 ambient,
+// per roughness and N.V bin.
+#include "shadelab/render/ibl_error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "shadelab/color/rgb.h"
+#include "shadelab/render/camera_model.h"
+#include "shadelab/render/path_tracer.h"
+
+namespace shadelab {
+
+namespace {
+
+constexpr double camera_distance = 20.0;
+
+// The scene of one sphere of (model, params) under the environment, seen from view_direction.
+Scene sphere_scene(const Scene& base, const std::string& model, ParamAssignments params, const IblErrorOptions& o) {
+  Scene s;
+  s.source = base.source;
+  s.environment = base.environment;
+  Material m;
+  m.name = model;
+  m.model = model;
+  m.params = std::move(params);
+  s.materials.push_back(std::move(m));
+  s.spheres.push_back({{0.0, 0.0, 0.0}, 1.0, 0});
+  const Vec3 v = normalize(o.view_direction);
+  s.camera.position = v * camera_distance;
+  s.camera.look_at = {0.0, 0.0, 0.0};
+  // Any up that is not along the view: +Y unless the view is (nearly) vertical.
+  s.camera.up = std::abs(v.y) > 0.99 ? Vec3{0.0, 0.0, 1.0} : Vec3{0.0, 1.0, 0.0};
+  // The sphere's angular radius asin(1/d), and a 2% margin.
+  s.camera.vfov_deg = 2.0 * rad_to_deg(std::asin(1.0 / camera_distance)) * 1.02;
+  s.camera.width = o.size;
+  s.camera.height = o.size;
+  s.settings.max_depth = 1;
+  s.settings.spp = o.spp;
+  s.settings.seed = o.seed;
+  s.settings.threads = o.threads;
+  s.settings.rr_depth = 0;
+  return s;
+}
+
+// Per bin: sums of the two images' luminance over the pixels whose centre ray meets the sphere at N.V in
+// the bin, away from the rim.
+IblErrorRow bin_images(const Scene& s, const Image& shortcut, const Image& reference, int bins, double roughness) {
+  const CameraModel camera(s.camera);
+  IblErrorRow row;
+  row.roughness = roughness;
+  std::vector<double> sum_s(static_cast<std::size_t>(bins), 0.0), sum_r(sum_s), sum_r2(sum_s);
+  std::vector<int> count(static_cast<std::size_t>(bins), 0);
+  // Angular size of a pixel against the sphere's angular radius: a pixel whose centre is within 0.75 of
+  // them of the rim is left out (its footprint, half a diagonal = 0.71 pixels around the centre, may reach
+  // the background). The others are compared pixel for pixel: both renderers average over the same footprint.
+  const double pixel_angle = 2.0 * camera.tan_half / s.camera.height;
+  const double rim = std::asin(1.0 / camera_distance);
+  for (int y = 0; y < s.camera.height; ++y) {
+    for (int x = 0; x < s.camera.width; ++x) {
+      const Ray r = camera.ray(x + 0.5, y + 0.5);
+      // The unit sphere at the origin: |o + t d| = 1, the nearer root.
+      const double b = dot(r.origin, r.direction);
+      const double c = dot(r.origin, r.origin) - 1.0;
+      const double disc = b * b - c;
+      if (disc <= 0.0) continue;
+      const double off_axis = std::acos(std::clamp(dot(r.direction, -normalize(r.origin)), -1.0, 1.0));
+      if (off_axis > rim - 0.75 * pixel_angle) continue;
+      const double t = -b - std::sqrt(disc);
+      const Vec3 n = normalize(r.origin + r.direction * t);
+      const double nv = -dot(n, r.direction);
+      if (!(nv > 0.0)) continue;
+      const int k = std::min(bins - 1, static_cast<int>(nv * bins));
+      const double ls = luminance(shortcut.at(x, y));
+      const double lr = luminance(reference.at(x, y));
+      const auto kk = static_cast<std::size_t>(k);
+      sum_s[kk] += ls;
+      sum_r[kk] += lr;
+      sum_r2[kk] += lr * lr;
+      ++count[kk];
+    }
+  }
+  for (int k = 0; k < bins; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    IblErrorCell cell;
+    cell.nv_lo = static_cast<double>(k) / bins;
+    cell.nv_hi = static_cast<double>(k + 1) / bins;
+    cell.pixels = count[kk];
+    if (cell.pixels > 0) {
+      const double n = cell.pixels;
+      cell.shortcut = sum_s[kk] / n;
+      cell.reference = sum_r[kk] / n;
+      const double var = std::max(0.0, sum_r2[kk] / n - cell.reference * cell.reference);
+      cell.reference_standard_error = n > 1 ? std::sqrt(var / (n - 1.0)) : 0.0;
+      cell.error = cell.reference > 0.0 ? (cell.shortcut - cell.reference) / cell.reference : 0.0;
+    }
+    row.cells.push_back(cell);
+  }
+  return row;
+}
+
+Result<Image> reference_image(const Scene& s) {
+  RenderOptions ro;
+  ro.mode = SamplingMode::mis;
+  auto r = render_scene(s, ro);
+  if (!r) return r.error();
+  if (r->stats.nonfinite_samples > 0) return make_error("ibl-error: the reference render had non-finite samples");
+  return std::move(r->beauty);
+}
+
+Result<Image> shortcut_image(const Scene& s, GameOptions g) {
+  g.punctual = false;
+  g.shadows = false;
+  g.threads = s.settings.threads;
+  auto r = render_game(s, g);
+  if (!r) return r.error();
+  if (r->stats.nonfinite_samples > 0) return make_error("ibl-error: the game render had non-finite samples");
+  return std::move(r->beauty);
+}
+
+}  // namespace
+
+IblErrorSummary summarize_ibl_error(const std::vector<IblErrorRow>& rows) {
+  IblErrorSummary s;
+  int n = 0, g = 0;
+  for (const IblErrorRow& row : rows) {
+    for (const IblErrorCell& c : row.cells) {
+      if (c.pixels == 0) continue;
+      const double e = std::abs(c.error);
+      s.mean_abs += e;
+      s.max_abs = std::max(s.max_abs, e);
+      ++n;
+      if (c.nv_hi <= 0.3 + 1e-12) {
+        s.grazing_mean_abs += e;
+        ++g;
+      }
+    }
+  }
+  if (n > 0) s.mean_abs /= n;
+  if (g > 0) s.grazing_mean_abs /= g;
+  return s;
+}
+
+Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, const ParamAssignments& params,
+                                  const IblErrorOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // The specular lobe alone (header): the parameter that would add a diffuse lobe is fixed.
+  std::string roughness_param;
+  std::pair<std::string, std::string> fixed;
+  if (model == "ggx") {
+    roughness_param = "roughness";
+    fixed = {"kd", "0"};
+  } else if (model == "filament") {
+    roughness_param = "perceptual_roughness";
+    fixed = {"metallic", "1"};
+  } else {
+    return make_error("ibl-error: model '" + model + "' has no split-sum specular ambient (ggx, filament)");
+  }
+  if (o.roughness.empty()) return make_error("ibl-error: roughness: the list is empty");
+  for (const double r : o.roughness) {
+    if (!(r > 0.0 && r <= 1.0)) return make_error("ibl-error: roughness: " + std::to_string(r) + " is not in (0, 1]");
+  }
+  if (o.nv_bins < 1 || o.nv_bins > 64) return make_error("ibl-error: nv_bins must be in [1, 64]");
+  if (o.size < 16 || o.size > 2048) return make_error("ibl-error: size must be in [16, 2048]");
+  if (o.spp < 1 || o.spp > 65536) return make_error("ibl-error: spp must be in [1, 65536]");
+  const Vec3 v = o.view_direction;
+  if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) || dot(v, v) < 1e-24) {
+    return make_error("ibl-error: view_direction must be a finite non-zero vector");
+  }
+  if (scene.environment.kind == Environment::Kind::none) return make_error("ibl-error: the scene has no environment");
+  for (const auto& [key, value] : params) {
+    if (key == roughness_param) return make_error("ibl-error: " + key + " is set per row (use the roughness list)");
+    if (key == fixed.first) {
+      return make_error("ibl-error: " + key + " is " + fixed.second + " in the split-sum map (the specular lobe alone; "
+                        "the diffuse shortcut is the SH map)");
+    }
+  }
+
+  IblErrorMap map;
+  map.model = model;
+  GameOptions split = o.game;
+  split.ggx_specular = GameGgxSpecular::split_sum;
+  split.diffuse = GameAmbient::none;
+  split.specular_ambient = true;
+  for (const double r : o.roughness) {
+    ParamAssignments p = params;
+    p.push_back(fixed);
+    p.emplace_back(roughness_param, std::to_string(r));
+    const Scene s = sphere_scene(scene, model, p, o);
+    auto ref = reference_image(s);
+    if (!ref) return ref.error();
+    auto game = shortcut_image(s, split);
+    if (!game) return game.error();
+    map.split_sum.push_back(bin_images(s, *game, *ref, o.nv_bins, r));
+  }
+  map.split_sum_summary = summarize_ibl_error(map.split_sum);
+
+  GameOptions sh = o.game;
+  sh.diffuse = GameAmbient::sh9;
+  sh.specular_ambient = false;
+  const Scene s = sphere_scene(scene, "lambert", {{"kd", "1"}}, o);
+  auto ref = reference_image(s);
+  if (!ref) return ref.error();
+  auto game = shortcut_image(s, sh);
+  if (!game) return game.error();
+  map.sh = bin_images(s, *game, *ref, o.nv_bins, 0.0);
+  map.sh_summary = summarize_ibl_error({map.sh});
+  map.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return map;
+}
+
+}  // namespace shadelab

@@ -1,0 +1,90 @@
+// shadelab IBL error maps: how far the engine-side shortcuts of image-based lighting are from the truth, as
+// a function of roughness and N.V (issue 11, section 5).
+//
+// For an environment (any Environment of a scene: a lat-long image, a uniform radiance, a sky), a unit sphere
+// of the given material at the origin, lit by the environment alone (no other geometry: a convex sphere
+// cannot shadow or see itself, so one bounce is the whole light transport), is rendered twice per roughness:
+// - the reference: the path tracer (render_scene, max_depth 1, MIS), `spp` samples a pixel;
+// - the shortcut: the game renderer's split sum (render_game, GameGgxSpecular::split_sum, no diffuse
+//   ambient, no punctual lights): prefiltered_ggx(R, r) (f0 A + f90 B), docs/renderer.md.
+// The camera looks at the sphere from `view_direction` (default +Z, along the horizon) through a narrow
+// field of view (distance 20, the sphere filling the frame), so each pixel's N.V is that of its centre ray
+// (CameraModel), and pixels are grouped into `nv_bins` equal bins of N.V over (0, 1] by the N.V of their
+// centre; a pixel whose footprint may cross the silhouette (its centre within 0.75 pixels of the rim) is
+// left out. Both renderers average a pixel over the same footprint, so pixels compare like for like; near
+// the rim one pixel spans a range of N.V (N.V < 0.3 is the outer 4.6% of the disk's radius: about 4 pixels
+// at size 192), so the grazing bins need a large size. Per bin, the mean
+// luminance (Rec. 709) of each image over the bin's pixels, and
+//   error = (shortcut - reference) / reference
+// of those means (bins, not pixels: the reference's noise averages out; its standard error is reported).
+// The same for the diffuse shortcut: a white Lambert sphere (kd = 1) under GameAmbient::sh9 (the SH9
+// irradiance, Ramamoorthi & Hanrahan 2001) against the path tracer.
+// Summary figures: the mean and the largest |error| over the cells, and the mean |error| over the cells
+// with N.V below 0.3 (the grazing bins: their upper edge <= 0.3 + 1e-12).
+// Deterministic: the renders are (seeded, any thread count).
+// Errors (Result): a model whose specular ambient is not the split sum (only ggx and filament), an empty or
+// out-of-range roughness list (each in (0, 1]), nv_bins outside [1, 64], size outside [16, 2048], spp
+// outside [1, 65536], a zero view direction, or a scene without an environment.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "shadelab/core/error.h"
+#include "shadelab/render/game_renderer.h"
+#include "shadelab/scene/scene.h"
+
+namespace shadelab {
+
+struct IblErrorOptions {
+  std::vector<double> roughness{0.1, 0.25, 0.4, 0.55, 0.7, 0.85, 1.0};  // perceptual roughness of the rows
+  int nv_bins = 8;
+  int size = 192;   // pixels across each sphere image
+  int spp = 256;    // path-traced samples per pixel of the reference
+  std::uint64_t seed = 7;
+  int threads = 0;  // 0: all cores
+  Vec3 view_direction{0.0, 0.0, 1.0};  // from the sphere toward the camera
+  GameOptions game;  // the shortcut's options; ggx_specular, diffuse, punctual are set per map
+};
+
+struct IblErrorCell {
+  double nv_lo = 0.0, nv_hi = 0.0;  // the bin
+  int pixels = 0;
+  double shortcut = 0.0;            // mean luminance of the game renderer's pixels
+  double reference = 0.0;           // mean luminance of the path tracer's pixels
+  double reference_standard_error = 0.0;  // of that mean, from the spread of the bin's pixels
+  double error = 0.0;               // (shortcut - reference) / reference
+};
+
+struct IblErrorRow {
+  double roughness = 0.0;  // perceptual; the Lambert row of the SH map has 0 here
+  std::vector<IblErrorCell> cells;
+};
+
+struct IblErrorSummary {
+  double mean_abs = 0.0;          // over every cell with pixels
+  double max_abs = 0.0;
+  double grazing_mean_abs = 0.0;  // over the cells with nv_hi <= 0.3
+};
+
+struct IblErrorMap {
+  std::string model;
+  std::vector<IblErrorRow> split_sum;  // one row per roughness
+  IblErrorSummary split_sum_summary;
+  IblErrorRow sh;                      // the Lambert sphere, SH9 irradiance against the path tracer
+  IblErrorSummary sh_summary;
+  double seconds = 0.0;
+};
+
+// The maps above for `model` with `params` under scene.environment (the rest of `scene` is ignored). The
+// roughness parameter is set per row ("roughness" for ggx, "perceptual_roughness" for filament), and the
+// split-sum map is of the specular lobe alone: ggx's kd is 0 and filament's metallic 1 (a metal has no
+// diffuse lobe); giving either is an error. The diffuse shortcut is the SH map's.
+Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, const ParamAssignments& params,
+                                  const IblErrorOptions& options = {});
+
+// The summary figures of a set of rows (what ibl_error_map fills in).
+IblErrorSummary summarize_ibl_error(const std::vector<IblErrorRow>& rows);
+
+}  // namespace shadelab
