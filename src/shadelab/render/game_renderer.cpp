@@ -1,5 +1,6 @@
 #include "shadelab/render/game_renderer.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -235,17 +236,53 @@ class GameShader {
   std::vector<kernel::GameSpecularAlbedo> m_albedo_tables;
 };
 
+// The environment's mean radiance over texel (x, y) of face f of an n x n cube: ss x ss directions at the
+// centres of a regular grid over the texel, each weighted by its solid angle, d omega = da db / (1 + a^2 +
+// b^2)^(3/2) with (a, b) = (2s - 1, 2t - 1) the point on the face plane (the texel solid angle's integrand,
+// envmap/cubemap.h). ss = 1 is the texel centre's radiance.
+Rgb texel_mean(const EnvironmentLight& env, int f, int x, int y, int n, int ss) {
+  if (ss <= 1) return env.radiance_without_sun(texel_direction(f, x, y, n));
+  Rgb sum;
+  double weight = 0.0;
+  for (int j = 0; j < ss; ++j) {
+    for (int i = 0; i < ss; ++i) {
+      const double s = (x + (i + 0.5) / ss) / n;
+      const double t = (y + (j + 0.5) / ss) / n;
+      const double a = 2.0 * s - 1.0;
+      const double b = 2.0 * t - 1.0;
+      const double q = 1.0 + a * a + b * b;
+      const double w = 1.0 / (q * std::sqrt(q));
+      sum += env.radiance_without_sun(cube_direction(f, s, t)) * w;
+      weight += w;
+    }
+  }
+  return sum / weight;
+}
+
+// The environment resampled to an n x n cube (header: texel means, options.environment_supersample).
+CubeMap environment_cube(const EnvironmentLight& env, int n, int ss) {
+  CubeMap cube(n);
+  tbb::parallel_for(tbb::blocked_range<int>(0, 6 * n), [&](const tbb::blocked_range<int>& r) {
+    for (int row = r.begin(); row != r.end(); ++row) {
+      const int f = row / n;
+      const int y = row % n;
+      for (int x = 0; x < n; ++x) cube.set(f, x, y, texel_mean(env, f, x, y, n, ss));
+    }
+  });
+  return cube;
+}
+
 }  // namespace
 
 Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const GameOptions& options) {
   GameEnvironment out;
   if (!env.has_light()) return out;
   out.has_light = true;
+  if (options.environment_supersample < 1 || options.environment_supersample > 32) {
+    return make_error("environment_supersample must be in [1, 32]");
+  }
   const int n = options.environment_size;
-  CubeMap cube(n);
-  for (int f = 0; f < 6; ++f)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) cube.set(f, x, y, env.radiance_without_sun(texel_direction(f, x, y, n)));
+  CubeMap cube = environment_cube(env, n, options.environment_supersample);
   out.sh = project_sh9(cube);
   if (options.diffuse == GameAmbient::irradiance_map) out.irradiance = irradiance_cube(cube, 32, RadianceUnits::game);
   if (options.specular_ambient) {
@@ -256,16 +293,9 @@ Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const
     out.specular = std::move(chain).value();
     if (options.ggx_specular == GameGgxSpecular::split_sum) {
       if (options.ggx_samples < 1 || options.ggx_samples > (1 << 20)) return make_error("ggx_samples must be in [1, 1048576]");
-      // Level 0 (r = 0) is the environment point-sampled as above at the chain's size, options.specular_size.
+      // Level 0 (r = 0) is the environment resampled as above at the chain's size, options.specular_size.
       const int m = options.specular_size;
-      CubeMap base(m);
-      if (m == n) {
-        base = cube;
-      } else {
-        for (int f = 0; f < 6; ++f)
-          for (int y = 0; y < m; ++y)
-            for (int x = 0; x < m; ++x) base.set(f, x, y, env.radiance_without_sun(texel_direction(f, x, y, m)));
-      }
+      const CubeMap base = m == n ? cube : environment_cube(env, m, options.environment_supersample);
       GgxPrefilterOptions go;
       go.samples = options.ggx_samples;
       try {

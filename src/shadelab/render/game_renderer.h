@@ -64,6 +64,10 @@ struct GameOptions {
   int spp = 4;            // antialiasing samples per pixel (stratified, deterministic)
   int threads = -1;       // -1: the scene's
   int environment_size = 64;  // face size the environment is baked at
+  // Each baked texel is the solid-angle-weighted mean of environment_supersample^2 directions over it
+  // (1: its centre's radiance, as before 2026-12-03; a point-sampled 64^2 cube held 0.889 of sunrise's
+  // luminous flux, 8 x 8 holds 0.993: docs/envmap.md, ibl-error). In [1, 32].
+  int environment_supersample = 8;
   int specular_size = 64;     // face size of the prefiltered cube's level 0
   GameGgxSpecular ggx_specular = GameGgxSpecular::phong;
   int ggx_samples = 1024;     // Hammersley half vectors per texel of the GGX chain (prefilter_ggx.h): with
@@ -73,8 +77,9 @@ struct GameOptions {
 
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options = {});
 
-// The environment as game shading bakes it: the radiance without the sky's sun (env_light.h), point-sampled
-// at the texel centres of a cube of options.environment_size (kept as radiance); its SH9 projection (radiance units: evaluate
+// The environment as game shading bakes it: the radiance without the sky's sun (env_light.h), resampled to a
+// cube of options.environment_size, each texel the mean over options.environment_supersample^2 directions
+// (kept as radiance); its SH9 projection (radiance units: evaluate
 // with sh9_irradiance_game for E/pi); the irradiance cube in game units (GameAmbient::irradiance_map only);
 // and the prefiltered specular chain of options.specular_size (options.specular_ambient only), and its GGX
 // chain (options.specular_ambient with ggx_specular = split_sum; render_game bakes it only for a scene with
@@ -83,7 +88,7 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options 
 // explorer (web/) bakes its HDRIs with it, so its sphere is lit by exactly what `render --mode game` uses.
 struct GameEnvironment {
   bool has_light = false;
-  CubeMap radiance;  // the point-sampled cube of options.environment_size that the rest is baked from
+  CubeMap radiance;  // the resampled cube of options.environment_size that the rest is baked from
   Sh9 sh;
   CubeMap irradiance;
   PrefilteredCube specular;

@@ -115,8 +115,9 @@ TEST(GameSplitSum, AConstantEnvironmentAgreesWithThePathTracer) {
 //   so the chain is the convolution up to float storage. With 512 samples the face-16 level was sampled
 //   and missed the sun by 45.8% (sunrise) and 65% (studio) at its worst texel;
 // - at ten directions off the centres: the bilinear read between centres 5.6 to 22.5 degrees apart of a
-//   convolution that still peaks at the sun (measured worst: sunrise 66.2%, studio 50.2%, forest 8.8%); the
-//   storage's error, the same for any bake of a 64 x 64 chain, held here at 70%;
+//   convolution that still peaks at the sun (measured worst: sunrise 73.9%, studio 49.8%, forest 9.1% with
+//   the supersampled environment cube, which keeps the sun's flux; 66.2%, 50.2%, 8.8% with the point-sampled
+//   one); the storage's error, the same for any bake of a 64 x 64 chain, held here at 80%;
 // - the renderer's pixel of a ggx sphere (F = 1, N.V = 1, r = 1/2) is the chain's value times A + B of its
 //   DFG table, to 1e-5 (measured 6e-16), and that A + B is within 0.1% of the quadrature (8e-4);
 // - at those five sphere points the Phong chain the renderer used before (GameGgxSpecular::phong) misses by
@@ -200,7 +201,7 @@ TEST(GameSplitSum, ThePrefilteredFactorIsTheGgxConvolutionOfTheEnvironment) {
   EXPECT_LE(worst_render, 1e-5);
   EXPECT_LE(worst_table, 1e-3);
   EXPECT_LE(worst_centre, 1e-6);
-  EXPECT_LE(worst_dir, 0.70);
+  EXPECT_LE(worst_dir, 0.80);
   RecordProperty("worst_relative_texel_centres", std::to_string(worst_centre));
   RecordProperty("worst_relative_directions", std::to_string(worst_dir));
   RecordProperty("worst_relative_phong", std::to_string(worst_phong));
