@@ -25,7 +25,8 @@ const std::string quick = " --roughness 0.3,0.8 --bins 4 --size 48 --spp 32 --th
 TEST(CliIblError, WritesTheMapsAndAConstantEnvironmentHasNoError) {
   const fs::path dir = temp_dir() / "ibl_error";
   const auto j = json_of(run("ibl-error " + constant_hdr().string() + quick + " --out " + dir.string() + " --json"));
-  for (const char* name : {"ibl_error.json", "split_sum_error.png", "split_sum_error.svg", "index.html"}) {
+  for (const char* name : {"ibl_error.json", "split_sum_error.png", "split_sum_error.svg", "index.html",
+                           "corrected_error.png"}) {
     EXPECT_TRUE(fs::is_regular_file(dir / name)) << name;
   }
   std::ifstream f(dir / "ibl_error.json");
@@ -34,6 +35,7 @@ TEST(CliIblError, WritesTheMapsAndAConstantEnvironmentHasNoError) {
   EXPECT_EQ(nlohmann::json::parse(ss.str()), j);  // the file is what --json prints
   EXPECT_EQ(j["model"], "ggx");
   EXPECT_EQ(j["nv_bins"], 4);
+  EXPECT_EQ(j["specular_size"], 64);
   ASSERT_EQ(j["split_sum"]["rows"].size(), 2u);
   EXPECT_EQ(j["split_sum"]["rows"][1]["roughness"], 0.8);
   for (const auto& row : j["split_sum"]["rows"]) {
@@ -42,6 +44,18 @@ TEST(CliIblError, WritesTheMapsAndAConstantEnvironmentHasNoError) {
       EXPECT_EQ(c.size(), 7u);
       if (c["pixels"] == 0) continue;
       // 0.5 everywhere: the split sum is L (f0 A + B) exactly but for the table (0.5%); the reference's noise.
+      EXPECT_LE(std::abs(c["error"].get<double>()),
+                4.0 * c["reference_standard_error"].get<double>() / c["reference"].get<double>() + 6e-3)
+          << c;
+    }
+  }
+  // The dominant direction under a constant environment: the same exactness (the direction cannot matter).
+  ASSERT_EQ(j["corrected"]["rows"].size(), 2u);
+  EXPECT_TRUE(j["corrected"].contains("grazing_reduction"));
+  EXPECT_NE(j["corrected"]["direction"].get<std::string>().find("alpha^2"), std::string::npos);
+  for (const auto& row : j["corrected"]["rows"]) {
+    for (const auto& c : row["cells"]) {
+      if (c["pixels"] == 0) continue;
       EXPECT_LE(std::abs(c["error"].get<double>()),
                 4.0 * c["reference_standard_error"].get<double>() / c["reference"].get<double>() + 6e-3)
           << c;
@@ -57,6 +71,7 @@ TEST(CliIblError, WritesTheMapsAndAConstantEnvironmentHasNoError) {
   std::stringstream ps;
   ps << page.rdbuf();
   EXPECT_NE(ps.str().find("split_sum_error.png"), std::string::npos);
+  EXPECT_NE(ps.str().find("corrected_error.png"), std::string::npos);
   EXPECT_NE(ps.str().find("SH9 irradiance"), std::string::npos);
 }
 
@@ -68,6 +83,8 @@ TEST(CliIblError, BadInputIsOneLineAndWritesNothing) {
   expect_usage_error("ibl-error " + in + " --roughness 0" + out, "--roughness: 0 is not in (0, 1]");
   expect_usage_error("ibl-error " + in + " --roughness 0.5,nan" + out, "--roughness");
   expect_usage_error("ibl-error " + in + " --bins 0" + out, "--bins");
+  expect_usage_error("ibl-error " + in + " --specular-size 48" + out, "--specular-size: 48 is not a power of two");
+  expect_usage_error("ibl-error " + in + " --specular-size 2048" + out, "--specular-size");
   expect_usage_error("ibl-error " + in + " --size 8" + out, "--size");
   expect_usage_error("ibl-error " + in + " --spp 0" + out, "--spp");
   expect_usage_error("ibl-error " + in + " --seed -1" + out, "--seed");

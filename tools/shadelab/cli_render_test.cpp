@@ -85,4 +85,28 @@ TEST(CliReport, WritesAPageWithThreeLightings) {
   EXPECT_NE(html.find("environment_game.png"), std::string::npos);
 }
 
+TEST(CliReport, IblErrorAddsTheMapOfTheEnvironment) {
+  // The furnace's uniform environment: the split sum is exact there but for its table, along R or the dominant
+  // direction alike, and SH9 of a constant is exact, so the mean errors are the reference's noise (4 spp).
+  const fs::path dir = temp_dir() / "report_ibl";
+  const auto j = json_of(run("report " + furnace + " --spp 4 --width 32 --ibl-error --out " + dir.string() + " --json"));
+  ASSERT_TRUE(j.contains("ibl_error")) << j;
+  EXPECT_TRUE(fs::exists(dir / "ibl_error" / "index.html"));
+  EXPECT_TRUE(fs::exists(dir / "ibl_error" / "corrected_error.png"));
+  EXPECT_LT(j["ibl_error"]["split_sum"]["mean_abs_error"].get<double>(), 0.03) << j["ibl_error"];
+  EXPECT_LT(j["ibl_error"]["corrected"]["mean_abs_error"].get<double>(), 0.03) << j["ibl_error"];
+  EXPECT_LT(j["ibl_error"]["sh"]["mean_abs_error"].get<double>(), 0.03) << j["ibl_error"];
+  std::ifstream f(dir / "index.html");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  EXPECT_NE(ss.str().find("ibl_error/index.html"), std::string::npos);
+  // A scene without an environment: one line, exit 2, nothing written.
+  const std::string none = std::string(SHADELAB_SCENES_DIR) + "/cornell.json";  // no environment
+  const fs::path bad = temp_dir() / "report_ibl_bad";
+  const auto r = run("report " + none + " --ibl-error --out " + bad.string());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("--ibl-error: the scene"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(bad / "index.html"));
+}
+
 }  // namespace

@@ -1,6 +1,8 @@
-// shadelab report SCENE [--out DIR] [--spp N]: renders the scene with the reference path tracer and with game
+// shadelab report SCENE [--out DIR] [--spp N] [--ibl-error]: renders the scene with the reference path tracer and with game
 // shading, in three lightings that isolate the approximations, compares them per material, and writes one
-// HTML page (DIR/index.html) with the images, heat maps and a table.
+// HTML page (DIR/index.html) with the images, heat maps and a table. --ibl-error adds the IBL error map of the
+// scene's environment (render/ibl_error.h, `shadelab ibl-error`'s defaults at the report's --spp) in
+// DIR/ibl_error/ and a section that links it.
 //
 //   punctual:     only the punctual lights (and the sky's sun), direct light (reference depth 1): the game
 //                 shading equation should agree within noise;
@@ -24,6 +26,7 @@
 #include <map>
 
 #include "cli_common.h"
+#include "ibl_error_page.h"
 #include "progress.h"
 #include "shadelab/brdf/wrapped_diffuse.h"
 #include "shadelab/image/image_io.h"
@@ -31,6 +34,7 @@
 #include "shadelab/render/accel.h"
 #include "shadelab/render/film.h"
 #include "shadelab/render/game_renderer.h"
+#include "shadelab/render/ibl_error.h"
 #include "shadelab/scene/scene_json.h"
 
 namespace shadelab::cli {
@@ -44,6 +48,7 @@ struct ReportOptions {
   std::string out = "report";
   int spp = 64;
   int width = 0;
+  bool ibl_error = false;
   bool json = false;
 };
 
@@ -164,6 +169,12 @@ void run_report(const ReportOptions& o) {
         outputs.push_back({"--out", dir / (std::string(kind) + file)});
       }
     }
+    if (o.ibl_error) {
+      if (scene.environment.kind == Environment::Kind::none) {
+        throw UsageError("--ibl-error: the scene '" + scene.source + "' has no environment to measure");
+      }
+      for (const auto& n : ibl_error_file_names()) outputs.push_back({"--out", dir / "ibl_error" / n});
+    }
     check_outputs(scene_inputs(scene), outputs);
   }
   work_begins();
@@ -236,6 +247,45 @@ void run_report(const ReportOptions& o) {
         heat.scale, rows);
   }
   bar.finish();
+  nlohmann::json ibl_json;
+  if (o.ibl_error) {
+    // The IBL error map of the scene's environment (render/ibl_error.h): a ggx sphere lit by it alone, the
+    // defaults of `shadelab ibl-error` but the reference's spp, which is the report's.
+    IblErrorOptions io;
+    io.spp = o.spp;
+    io.threads = scene.settings.threads;
+    const IblErrorMap map = unwrap(ibl_error_map(scene, "ggx", {}, io));
+    const fs::path sub = dir / "ibl_error";
+    fs::create_directories(sub, ec);
+    if (ec) throw UsageError("--out: cannot create the folder '" + sub.string() + "': " + ec.message());
+    IblErrorHeader header;
+    header.input = scene.source + " (environment)";
+    header.nv_bins = io.nv_bins;
+    header.size = io.size;
+    header.spp = io.spp;
+    header.specular_size = io.game.specular_size;
+    header.seed = io.seed;
+    (void)write_ibl_error_files(map, header, sub);
+    const auto pct = [](double v) { return 100.0 * v; };
+    body += fmt::format(
+        "<h2>Image-based lighting: the shortcuts against the path tracer</h2>\n<p>A ggx sphere lit by this scene's "
+        "environment alone, per roughness and N.V (<a href=\"ibl_error/index.html\">the whole map</a>). Split sum "
+        "read along R: mean |error| {:.2f}%, max {:.2f}%, at N.V &lt; 0.3 {:.2f}%; along the dominant direction: mean "
+        "{:.2f}%, max {:.2f}%, at N.V &lt; 0.3 {:.2f}%; SH9 irradiance on a white Lambert sphere: mean {:.2f}%, max "
+        "{:.2f}%.</p>\n<div class=row><figure><img src=\"ibl_error/split_sum_error.png\"><figcaption>split sum |error|"
+        "</figcaption></figure><figure><img src=\"ibl_error/corrected_error.png\"><figcaption>dominant direction"
+        "</figcaption></figure></div>\n",
+        pct(map.split_sum_summary.mean_abs), pct(map.split_sum_summary.max_abs), pct(map.split_sum_summary.grazing_mean_abs),
+        pct(map.corrected_summary.mean_abs), pct(map.corrected_summary.max_abs), pct(map.corrected_summary.grazing_mean_abs),
+        pct(map.sh_summary.mean_abs), pct(map.sh_summary.max_abs));
+    const auto summary = [](const IblErrorSummary& v) {
+      return nlohmann::json{{"mean_abs_error", v.mean_abs}, {"max_abs_error", v.max_abs},
+                            {"grazing_mean_abs_error", v.grazing_mean_abs}};
+    };
+    ibl_json = {{"page", (sub / "index.html").string()}, {"split_sum", summary(map.split_sum_summary)},
+                {"corrected", summary(map.corrected_summary)}, {"grazing_reduction", map.grazing_reduction},
+                {"sh", summary(map.sh_summary)}, {"seconds", map.seconds}};
+  }
   const std::string html = fmt::format(
       "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>shadelab report: {0}</title>\n<style>body{{font-family:sans-serif;"
       "max-width:1400px;margin:2em auto}} .row{{display:flex;gap:8px}} figure{{margin:0}} img{{max-width:100%}} table{{border-collapse:collapse}}"
@@ -251,14 +301,22 @@ void run_report(const ReportOptions& o) {
   unwrap(write_file_atomically(dir / "index.html", std::vector<char>(html.begin(), html.end())));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (o.json) {
-    print_json({{"scene", scene.source}, {"report", (dir / "index.html").string()}, {"sections", sections},
-                {"nonfinite_samples", nonfinite}, {"seconds", seconds}});
+    nlohmann::json j = {{"scene", scene.source}, {"report", (dir / "index.html").string()}, {"sections", sections},
+                        {"nonfinite_samples", nonfinite}, {"seconds", seconds}};
+    if (o.ibl_error) j["ibl_error"] = ibl_json;
+    print_json(j);
   } else {
     for (const auto& s : sections) {
       fmt::print("{:<12} RMSE {:.4g}  relative MSE {:.4g}  luminance game/ref {:.4f}\n", s["lighting"].get<std::string>(),
                  s["rmse"].get<double>(), s["relative_mse"].get<double>(), s["luminance_ratio"].get<double>());
     }
     for (const auto& line : wrap_lines) fmt::print("wrapped diffuse: {}\n", line);
+    if (o.ibl_error) {
+      fmt::print("ibl error: split sum mean |error| {:.2f}%, along the dominant direction {:.2f}%; SH9 {:.2f}% ({})\n",
+                 100.0 * ibl_json["split_sum"]["mean_abs_error"].get<double>(),
+                 100.0 * ibl_json["corrected"]["mean_abs_error"].get<double>(),
+                 100.0 * ibl_json["sh"]["mean_abs_error"].get<double>(), ibl_json["page"].get<std::string>());
+    }
     fmt::print("wrote {}\n", (dir / "index.html").string());
   }
   if (nonfinite > 0) {
@@ -276,6 +334,8 @@ void add_report_command(CLI::App& app, Command& command) {
   sub->add_option("--out", o->out, "output folder (index.html and images)")->capture_default_str();
   sub->add_option("--spp", o->spp, "reference samples per pixel")->capture_default_str();
   sub->add_option("--width", o->width, "render width (the height follows the camera's aspect)");
+  sub->add_flag("--ibl-error", o->ibl_error, "add the IBL error map of the scene's environment (shadelab ibl-error's "
+                                            "defaults at --spp) as ibl_error/ and a section");
   sub->add_flag("--json", o->json, "machine-readable summary");
   sub->callback([o, &command] { command.run = [o] { run_report(*o); }; });
 }

@@ -8,10 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "shadelab/brdf/registry.h"
 #include "shadelab/core/constants.h"
+#include "shadelab/core/frame.h"
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/kernels/kernels.h"
 
@@ -59,6 +61,34 @@ TEST(GameKernels, ReflectKeepsTheAngleToTheNormal) {
   // r, wo and n are coplanar and wo + r is along n.
   const Vec3 s = wo + r;
   EXPECT_NEAR(length(cross(s, n)), 0.0, 1e-12);
+}
+
+TEST(GameKernels, SplitSumDirectionLeansFromTheMirrorToTheNormal) {
+  // d = normalize(mix(R, n, alpha^2)): R for a mirror, n for alpha = 1, and in between on the great circle
+  // from R to n at the angle from n that the plane's own trigonometry gives: with t = alpha^2 and theta_R
+  // the angle of R from n, tan(theta_d) = (1 - t) sin(theta_R) / (t + (1 - t) cos(theta_R)).
+  const Vec3 n = normalize(Vec3{0.1, 0.2, 0.95});
+  for (const double nv : {0.05, 0.3, 0.7, 1.0}) {
+    const Frame frame = Frame::from_normal(n);
+    const Vec3 wo = frame.to_world({std::sqrt(1.0 - nv * nv), 0.0, nv});
+    const Vec3 r = kernel::game_reflect(wo, n);
+    const double theta_r = std::acos(std::clamp(dot(r, n), -1.0, 1.0));
+    double last = theta_r + 1e-12;
+    for (const double alpha : {0.0, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0}) {
+      const Vec3 d = kernel::game_split_sum_direction(n, r, alpha);
+      EXPECT_NEAR(length(d), 1.0, 1e-12);
+      EXPECT_NEAR(dot(cross(r, n), d), 0.0, 1e-12);  // in the plane of R and n
+      const double t = alpha * alpha;
+      const double want = std::atan2((1.0 - t) * std::sin(theta_r), t + (1.0 - t) * std::cos(theta_r));
+      EXPECT_NEAR(std::acos(std::clamp(dot(d, n), -1.0, 1.0)), want, 1e-7) << "nv " << nv << " alpha " << alpha;
+      EXPECT_LE(std::acos(std::clamp(dot(d, n), -1.0, 1.0)), last);  // toward n as alpha grows
+      last = std::acos(std::clamp(dot(d, n), -1.0, 1.0)) + 1e-12;
+    }
+    const Vec3 mirror = kernel::game_split_sum_direction(n, r, 0.0);
+    const Vec3 normal = kernel::game_split_sum_direction(n, r, 1.0);
+    EXPECT_NEAR(length(mirror - r), 0.0, 1e-12);
+    EXPECT_NEAR(length(normal - n), 0.0, 1e-12);
+  }
 }
 
 TEST(GameKernels, PointLightAndGameColour) {

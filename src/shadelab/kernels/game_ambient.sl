@@ -9,7 +9,8 @@
 //   split-sum specular ambient (microfacet-GGX materials, Karis 2013 "Real Shading in Unreal Engine 4" eqs.
 //     4-8; Filament's documentation, "Image based lights"): L += prefiltered_ggx(R, r) (f0 A + f90 B), the GGX
 //     chain (envmap/prefilter_ggx.h) read at the perceptual roughness r and A, B the DFG table's scale and
-//     bias at (N.V, r) (envmap/dfg.h).
+//     bias at (N.V, r) (envmap/dfg.h); the chain read along R as published, or along the dominant direction
+//     normalize(mix(R, n, alpha^2)), alpha = r^2 (game_split_sum_direction below).
 
 const int GAME_ALBEDO_BINS = 32;
 
@@ -39,6 +40,17 @@ inline real game_prefiltered_level(real n_phong, real levels, real gloss_scale, 
 // The mirror direction of wo about the normal n (both unit, world space): R = 2 (wo.n) n - wo.
 inline vec3 game_reflect(vec3 wo, vec3 n) {
   return n * (2.0 * dot(wo, n)) - wo;
+}
+
+// The split sum's lookup direction leaned from the mirror direction r toward the normal n, the "dominant
+// direction" of the GGX lobe (the idea: Lagarde & de Rousiers 2014, "Moving Frostbite to PBR", sec. 4.9.3;
+// this lerp factor: Filament's shaders, getSpecularDominantDirection): d = normalize(mix(r, n, alpha^2)),
+// alpha = perceptual roughness^2. The chain's lobe about R is radially symmetric (n = v = R), while the rough
+// lobe at oblique view leans toward the normal: d is R for a mirror, n for alpha = 1. Measured by
+// `shadelab ibl-error` (render/ibl_error.h, docs/envmap.md) against the path tracer.
+inline vec3 game_split_sum_direction(vec3 n, vec3 r, real alpha) {
+  real t = clamp(alpha * alpha, 0.0, 1.0);
+  return normalize(r * (1.0 - t) + n * t);
 }
 
 // The diffuse ambient: a surface of diffuse albedo rho_d under an environment of irradiance E shows

@@ -42,8 +42,10 @@ bool uses_split_sum(const std::string& model) { return model == "ggx" || model =
 
 class GameShader {
  public:
-  GameShader(const Scene& scene, const GameOptions& options)
-      : m_scene(scene), m_options(options), m_accel(scene), m_env(scene) {}
+  GameShader(const Scene& scene, const GameOptions& options, const GameEnvironment* baked)
+      : m_scene(scene), m_options(options), m_accel(scene), m_env(scene), m_baked(baked) {}
+  GameShader(const GameShader&) = delete;  // m_baked may point into m_owned
+  GameShader& operator=(const GameShader&) = delete;
 
   Result<bool> prepare() {
     if (auto ok = m_materials.prepare(m_scene); !ok) return ok.error();
@@ -73,16 +75,28 @@ class GameShader {
     if (m_options.ggx_specular == GameGgxSpecular::split_sum) {
       for (const Material& m : m_scene.materials) any_split_sum = any_split_sum || uses_split_sum(m.model);
     }
-    if (m_env.has_light()) {
+    if (m_env.has_light() && m_baked != nullptr) {
+      // A bake from the caller (render_game's third overload): it must hold what these options read.
+      const GameEnvironment& b = *m_baked;
+      if (!b.has_light) return make_error("game renderer: the baked environment is empty but the scene has one");
+      if (m_options.diffuse == GameAmbient::irradiance_map && b.irradiance.size == 0) {
+        return make_error("game renderer: the baked environment has no irradiance cube (diffuse irradiance_map)");
+      }
+      if (m_options.specular_ambient && b.specular.levels.empty()) {
+        return make_error("game renderer: the baked environment has no prefiltered chain (specular_ambient)");
+      }
+      if (m_options.specular_ambient && any_split_sum && b.specular_ggx.levels.empty()) {
+        return make_error("game renderer: the baked environment has no GGX chain (split sum)");
+      }
+    } else if (m_env.has_light()) {
       GameOptions bake_options = m_options;
       if (!any_split_sum) bake_options.ggx_specular = GameGgxSpecular::phong;
       auto baked = bake_game_environment(m_env, bake_options);
       if (!baked) return baked.error();
-      m_sh = baked->sh;
-      m_irradiance = std::move(baked->irradiance);
-      m_specular = std::move(baked->specular);
-      m_specular_ggx = std::move(baked->specular_ggx);
+      m_owned = std::move(*baked);
+      m_baked = &m_owned;
     }
+    if (m_baked != nullptr) m_sh = m_baked->sh;
     if (any_split_sum) {
       if (m_options.dfg_size < 1 || m_options.dfg_size > 4096) return make_error("dfg_size must be in [1, 4096]");
       m_dfg = &game_dfg_table(m_options.dfg_size);
@@ -157,7 +171,7 @@ class GameShader {
       const Vec3 n = sf.frame.n;
       if (m_options.diffuse != GameAmbient::none) {
         if (m_options.diffuse == GameAmbient::irradiance_map) {
-          e_over_pi = m_irradiance.sample(n);
+          e_over_pi = m_baked->irradiance.sample(n);
         } else {
           e_over_pi = sh9_evaluate(m_sh, n, info.wrap > 0.0 ? wrapped_band_factors_over_pi(info.wrap) : cosine_band_factors_over_pi);
         }
@@ -166,14 +180,18 @@ class GameShader {
     }
     std::optional<GgxSplitSumLobe> split;
     if (m_env.has_light() && m_options.specular_ambient && m_split_sum[static_cast<std::size_t>(hit.material)] &&
-        !m_specular_ggx.levels.empty() && m_dfg != nullptr) {
+        m_baked != nullptr && !m_baked->specular_ggx.levels.empty() && m_dfg != nullptr) {
       split = ggx_split_sum_lobe(*f);  // the hit's own BRDF: a textured hit's roughness and f0
     }
     if (split) {
-      // The split sum of kernels/game_ambient.sl: prefiltered_ggx(R, r) (f0 A + f90 B), A and B at (N.V, r).
-      const Vec3 r = kernel::game_reflect(wo_world, sf.frame.n);
+      // The split sum of kernels/game_ambient.sl: prefiltered_ggx(d, r) (f0 A + f90 B), A and B at (N.V, r),
+      // d the mirror direction R or the dominant direction (options.split_sum_direction).
+      Vec3 r = kernel::game_reflect(wo_world, sf.frame.n);
+      if (m_options.split_sum_direction == GameSplitSumDirection::dominant) {
+        r = kernel::game_split_sum_direction(sf.frame.n, r, split->roughness * split->roughness);
+      }
       const DfgAb ab = dfg_lookup(*m_dfg, wo.z, split->roughness);
-      Rgb spec = Rgb(kernel::game_split_sum_specular(sample_ggx_chain(m_specular_ggx, r, split->roughness), split->f0,
+      Rgb spec = Rgb(kernel::game_split_sum_specular(sample_ggx_chain(m_baked->specular_ggx, r, split->roughness), split->f0,
                                                      split->f90, ab.a, ab.b));
       const double e = ab.a + ab.b;  // E(N.V) with F = 1, of the same table
       if (split->filament != nullptr && e > 0.0) spec = spec * Rgb(kernel::filament_energy_compensation(split->f0, e));
@@ -181,7 +199,7 @@ class GameShader {
       l += spec;
     } else if (m_env.has_light()) {
       const Vec3 n = sf.frame.n;
-      if (m_options.specular_ambient && info.exponent > 0.0 && !m_specular.levels.empty()) {
+      if (m_options.specular_ambient && info.exponent > 0.0 && m_baked != nullptr && !m_baked->specular.levels.empty()) {
         double n_phong = info.exponent;
         const Material& m = m_scene.materials[static_cast<std::size_t>(hit.material)];
         if (m.gloss_texture >= 0) {
@@ -208,14 +226,14 @@ class GameShader {
   // The prefiltered radiance for a Phong exponent: the chain's level for it (kernels/game_ambient.sl, the
   // gloss mapping of prefilter.h inverted), linear between levels.
   Rgb prefiltered(const Vec3& r, double n) const {
-    const auto levels = static_cast<int>(m_specular.levels.size());
+    const auto levels = static_cast<int>(m_baked->specular.levels.size());
     const PrefilterOptions po;
     const double level = kernel::game_prefiltered_level(n, levels, po.gloss_scale, po.gloss_bias);
     const int i0 = static_cast<int>(level);
     const int i1 = std::min(i0 + 1, levels - 1);
     const double t = level - i0;
-    return m_specular.levels[static_cast<std::size_t>(i0)].sample(r) * (1.0 - t) +
-           m_specular.levels[static_cast<std::size_t>(i1)].sample(r) * t;
+    return m_baked->specular.levels[static_cast<std::size_t>(i0)].sample(r) * (1.0 - t) +
+           m_baked->specular.levels[static_cast<std::size_t>(i1)].sample(r) * t;
   }
 
   const Scene& m_scene;
@@ -227,9 +245,8 @@ class GameShader {
   Sh9 m_sh;
   Sh9 m_sh_lights;  // directional lights added D3DX-style (game_sh)
   bool m_has_sh_lights = false;
-  CubeMap m_irradiance;
-  PrefilteredCube m_specular;
-  GgxPrefilteredCube m_specular_ggx;
+  const GameEnvironment* m_baked = nullptr;  // the caller's bake, or m_owned
+  GameEnvironment m_owned;
   const DfgTable* m_dfg = nullptr;
   std::vector<bool> m_split_sum;  // per material: the split-sum specular ambient
   std::vector<GameLobe> m_info;
@@ -328,10 +345,12 @@ Result<GameEnvironment> bake_game_environment(const Scene& scene, const GameOpti
   return bake_game_environment(env, options);
 }
 
-Result<RenderResult> render_game(const Scene& scene, const GameOptions& options) {
+namespace {
+
+Result<RenderResult> render_game_with(const Scene& scene, const GameOptions& options, const GameEnvironment* baked) {
   const auto t0 = std::chrono::steady_clock::now();
   if (auto limits = check_scene_limits(scene); !limits) return limits.error();
-  GameShader shader(scene, options);
+  GameShader shader(scene, options, baked);
   if (auto ok = shader.prepare(); !ok) return ok.error();
   const int w = scene.camera.width;
   const int h = scene.camera.height;
@@ -369,8 +388,18 @@ Result<RenderResult> render_game(const Scene& scene, const GameOptions& options)
   return result;
 }
 
+}  // namespace
+
+Result<RenderResult> render_game(const Scene& scene, const GameOptions& options) {
+  return render_game_with(scene, options, nullptr);
+}
+
+Result<RenderResult> render_game(const Scene& scene, const GameOptions& options, const GameEnvironment& baked) {
+  return render_game_with(scene, options, &baked);
+}
+
 Result<Rgb> game_radiance(const Scene& scene, const Vec3& origin, const Vec3& direction, const GameOptions& options) {
-  GameShader shader(scene, options);
+  GameShader shader(scene, options, nullptr);
   if (auto ok = shader.prepare(); !ok) return ok.error();
   return shader.shade(Ray{origin, normalize(direction)});
 }

@@ -51,6 +51,9 @@ TEST(GameSplitSum, AConstantEnvironmentGivesTheDfgIntegralPerPixel) {
     double f0;  // < 0: f = none
   };
   const Case cases[] = {{0.2, 0.04}, {0.5, 0.04}, {0.8, 0.04}, {0.2, -1.0}, {0.5, 0.9}, {0.9, -1.0}};
+  // A constant environment is constant in a chain of any size: small faces, a quick bake per call.
+  GameOptions small = split_sum_options();
+  small.environment_size = small.specular_size = 16;
   double worst = 0.0;
   for (const Case& c : cases) {
     ParamAssignments p{{"kd", "0"}, {"roughness", std::to_string(c.roughness)}};
@@ -66,7 +69,7 @@ TEST(GameSplitSum, AConstantEnvironmentGivesTheDfgIntegralPerPixel) {
       const DfgValue v = dfg_quadrature(mu, c.roughness * c.roughness, 1e-9);
       const double f0 = c.f0 < 0.0 ? 1.0 : c.f0;
       const double expected = 0.5 * (f0 * v.a + v.b);
-      const Rgb game = game_radiance(s, {x, 0, 4}, {0, 0, -1}, split_sum_options()).value();
+      const Rgb game = game_radiance(s, {x, 0, 4}, {0, 0, -1}, small).value();
       const double rel = std::abs(game.g - expected) / expected;
       worst = std::max(worst, rel);
       EXPECT_LE(rel, 5e-3) << "r " << c.roughness << " f0 " << c.f0 << " N.V " << mu << ": game " << game.g
@@ -205,6 +208,72 @@ TEST(GameSplitSum, ThePrefilteredFactorIsTheGgxConvolutionOfTheEnvironment) {
   RecordProperty("worst_relative_texel_centres", std::to_string(worst_centre));
   RecordProperty("worst_relative_directions", std::to_string(worst_dir));
   RecordProperty("worst_relative_phong", std::to_string(worst_phong));
+}
+
+// A sphere of ggx under a lat-long whose radiance varies with direction (a sky brighter toward +Y and +X),
+// seen from +Z at 32 x 32.
+Scene varying_sphere(double roughness) {
+  Scene s = constant_sphere("ggx", {{"kd", "0"}, {"roughness", std::to_string(roughness)}});
+  s.environment.kind = Environment::Kind::image;
+  s.environment.latlong = Image(64, 32);
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 0; x < 64; ++x) s.environment.latlong.set(x, y, Rgb{0.2 + 3.0 * (32 - y) / 32.0, 0.5 + x / 64.0, 0.3});
+  }
+  s.camera.position = {0, 0, 4};
+  s.camera.look_at = {0, 0, 0};
+  s.camera.vfov_deg = 32.0;
+  s.camera.width = s.camera.height = 32;
+  return s;
+}
+
+TEST(GameSplitSum, ABakeGivenByTheCallerRendersAsTheRenderersOwn) {
+  const Scene s = varying_sphere(0.6);
+  GameOptions o = split_sum_options();
+  o.specular_size = 16;
+  o.environment_size = 16;
+  const RenderResult own = render_game(s, o).value();
+  const GameEnvironment baked = bake_game_environment(s, o).value();
+  const RenderResult given = render_game(s, o, baked).value();
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      ASSERT_EQ(own.beauty.at(x, y).r, given.beauty.at(x, y).r) << x << ", " << y;
+      ASSERT_EQ(own.beauty.at(x, y).g, given.beauty.at(x, y).g) << x << ", " << y;
+      ASSERT_EQ(own.beauty.at(x, y).b, given.beauty.at(x, y).b) << x << ", " << y;
+    }
+  // A bake without what the options read is an error naming it, not a silently darker image.
+  GameOptions phong = o;
+  phong.ggx_specular = GameGgxSpecular::phong;
+  const GameEnvironment no_ggx = bake_game_environment(s, phong).value();
+  const auto r = render_game(s, o, no_ggx);
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("no GGX chain"), std::string::npos) << r.error().message;
+  GameOptions irr = o;
+  irr.diffuse = GameAmbient::irradiance_map;
+  EXPECT_NE(render_game(s, irr, baked).error().message.find("no irradiance cube"), std::string::npos);
+  EXPECT_NE(render_game(s, o, GameEnvironment{}).error().message.find("empty"), std::string::npos);
+}
+
+TEST(GameSplitSum, TheDominantDirectionChangesOnlyWhatDependsOnDirection) {
+  // Under a constant environment the lookup direction cannot matter: mirror and dominant agree to rounding.
+  // Under the varying sky they differ at oblique view (the rim) and agree head on (R = n there).
+  GameOptions mirror = split_sum_options();
+  mirror.environment_size = mirror.specular_size = 16;  // a quick bake per call
+  mirror.split_sum_direction = GameSplitSumDirection::mirror;
+  GameOptions dominant = mirror;
+  dominant.split_sum_direction = GameSplitSumDirection::dominant;
+  const Scene c = constant_sphere("ggx", {{"kd", "0"}, {"roughness", "0.7"}});
+  for (const double x : offsets) {
+    const Rgb a = game_radiance(c, {x, 0, 4}, {0, 0, -1}, mirror).value();
+    const Rgb b = game_radiance(c, {x, 0, 4}, {0, 0, -1}, dominant).value();
+    EXPECT_NEAR(a.g, b.g, 1e-6 * a.g) << x;
+  }
+  const Scene v = varying_sphere(0.7);
+  const Rgb head_m = game_radiance(v, {0, 0, 4}, {0, 0, -1}, mirror).value();
+  const Rgb head_d = game_radiance(v, {0, 0, 4}, {0, 0, -1}, dominant).value();
+  EXPECT_NEAR(head_m.g, head_d.g, 1e-9 * head_m.g);
+  const Rgb rim_m = game_radiance(v, {0, 0.95, 4}, {0, 0, -1}, mirror).value();
+  const Rgb rim_d = game_radiance(v, {0, 0.95, 4}, {0, 0, -1}, dominant).value();
+  EXPECT_GT(std::abs(rim_m.r - rim_d.r), 0.02 * rim_m.r) << rim_m.r << " vs " << rim_d.r;
 }
 
 TEST(GameSplitSum, ThePhongFamilyKeepsThePhongChain) {

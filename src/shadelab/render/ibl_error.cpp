@@ -110,11 +110,13 @@ Result<Image> reference_image(const Scene& s) {
   return std::move(r->beauty);
 }
 
-Result<Image> shortcut_image(const Scene& s, GameOptions g) {
-  g.punctual = false;
+Result<Image> shortcut_image(const Scene& s, GameOptions g, const GameEnvironment& baked) {
+  // The sphere scene has no lights: the only punctual light is a sky's sun, which the game renderer shades
+  // per pixel (and bakes out of the environment), as the path tracer sees it in the sky.
+  g.punctual = true;
   g.shadows = false;
   g.threads = s.settings.threads;
-  auto r = render_game(s, g);
+  auto r = render_game(s, g, baked);
   if (!r) return r.error();
   if (r->stats.nonfinite_samples > 0) return make_error("ibl-error: the game render had non-finite samples");
   return std::move(r->beauty);
@@ -184,6 +186,10 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
   split.ggx_specular = GameGgxSpecular::split_sum;
   split.diffuse = GameAmbient::none;
   split.specular_ambient = true;
+  // One bake of the environment for every game render of the map (the SH map's too: the bake always projects
+  // SH9, and diffuse none/sh9 bake the same).
+  auto baked = bake_game_environment(scene, split);
+  if (!baked) return baked.error();
   for (const double r : o.roughness) {
     ParamAssignments p = params;
     p.push_back(fixed);
@@ -191,11 +197,20 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
     const Scene s = sphere_scene(scene, model, p, o);
     auto ref = reference_image(s);
     if (!ref) return ref.error();
-    auto game = shortcut_image(s, split);
+    split.split_sum_direction = GameSplitSumDirection::mirror;
+    auto game = shortcut_image(s, split, *baked);
     if (!game) return game.error();
     map.split_sum.push_back(bin_images(s, *game, *ref, o.nv_bins, r));
+    split.split_sum_direction = GameSplitSumDirection::dominant;
+    auto corrected = shortcut_image(s, split, *baked);
+    if (!corrected) return corrected.error();
+    map.corrected.push_back(bin_images(s, *corrected, *ref, o.nv_bins, r));
   }
   map.split_sum_summary = summarize_ibl_error(map.split_sum);
+  map.corrected_summary = summarize_ibl_error(map.corrected);
+  map.grazing_reduction = map.split_sum_summary.grazing_mean_abs > 0.0
+                              ? 1.0 - map.corrected_summary.grazing_mean_abs / map.split_sum_summary.grazing_mean_abs
+                              : 0.0;
 
   GameOptions sh = o.game;
   sh.diffuse = GameAmbient::sh9;
@@ -203,7 +218,7 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
   const Scene s = sphere_scene(scene, "lambert", {{"kd", "1"}}, o);
   auto ref = reference_image(s);
   if (!ref) return ref.error();
-  auto game = shortcut_image(s, sh);
+  auto game = shortcut_image(s, sh, *baked);
   if (!game) return game.error();
   map.sh = bin_images(s, *game, *ref, o.nv_bins, 0.0);
   map.sh_summary = summarize_ibl_error({map.sh});

@@ -1,0 +1,169 @@
+// The files of an IBL error map (ibl_error_page.h).
+#include "ibl_error_page.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "cli_common.h"
+#include "shadelab/image/image_io.h"
+#include "shadelab/image/metrics.h"
+#include "shadelab/plot/plot.h"
+
+namespace shadelab::cli {
+
+namespace {
+
+constexpr int cell_pixels = 24;
+
+nlohmann::json cells_json(const IblErrorRow& row) {
+  nlohmann::json cells = nlohmann::json::array();
+  for (const IblErrorCell& c : row.cells) {
+    cells.push_back({{"nv_lo", c.nv_lo}, {"nv_hi", c.nv_hi}, {"pixels", c.pixels}, {"shortcut", c.shortcut},
+                     {"reference", c.reference}, {"reference_standard_error", c.reference_standard_error},
+                     {"error", c.error}});
+  }
+  return cells;
+}
+
+nlohmann::json summary_json(const IblErrorSummary& s) {
+  return {{"mean_abs_error", s.mean_abs}, {"max_abs_error", s.max_abs}, {"grazing_mean_abs_error", s.grazing_mean_abs}};
+}
+
+// |error| of each cell through the heat ramp, white at `scale`.
+Image heat_grid(const std::vector<IblErrorRow>& rows, double scale) {
+  const int cols = rows.empty() ? 1 : static_cast<int>(rows.front().cells.size());
+  Image img(cols * cell_pixels, static_cast<int>(rows.size()) * cell_pixels);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (int k = 0; k < cols; ++k) {
+      const IblErrorCell& c = rows[i].cells[static_cast<std::size_t>(k)];
+      const Rgb colour = c.pixels > 0 ? heat_ramp(std::abs(c.error) / scale) : Rgb::gray(0.2);
+      for (int y = 0; y < cell_pixels; ++y)
+        for (int x = 0; x < cell_pixels; ++x) img.set(k * cell_pixels + x, static_cast<int>(i) * cell_pixels + y, colour);
+    }
+  }
+  return img;
+}
+
+LinePlot error_plot(const IblErrorMap& map, const std::string& input) {
+  LinePlot p;
+  p.title = "IBL shortcuts vs path tracer: " + std::filesystem::path(input).filename().string() + ", " + map.model;
+  p.x.label = "N.V (bin centre)";
+  p.y.label = "(shortcut - reference) / reference";
+  const auto series = [](const IblErrorRow& row, const std::string& label) {
+    Series s;
+    s.label = label;
+    for (const IblErrorCell& c : row.cells) {
+      s.x.push_back(0.5 * (c.nv_lo + c.nv_hi));
+      s.y.push_back(c.pixels > 0 ? c.error : std::nan(""));
+    }
+    return s;
+  };
+  for (const IblErrorRow& row : map.split_sum) p.series.push_back(series(row, fmt::format("split sum, r = {:.2f}", row.roughness)));
+  Series sh = series(map.sh, "SH9 irradiance (Lambert)");
+  sh.dashed = true;
+  p.series.push_back(std::move(sh));
+  p.lines.push_back({0.0, "", std::nullopt});
+  return p;
+}
+
+std::string html_escape(const std::string& s) {
+  std::string out;
+  for (const char c : s) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+std::string html_page(const IblErrorMap& map, const std::string& input, double scale) {
+  std::ostringstream h;
+  const auto pct = [](double v) { return fmt::format("{:+.2f}%", 100.0 * v); };
+  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>shadelab ibl-error: "
+    << html_escape(std::filesystem::path(input).filename().string()) << "</title>\n"
+    << "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #999;"
+       "padding:2px 6px;text-align:right}</style></head><body>\n"
+    << "<h1>Image-based lighting: the shortcuts against the path tracer</h1>\n<p>Environment <code>"
+    << html_escape(input) << "</code>, model <code>" << html_escape(map.model)
+    << "</code>. A unit sphere lit by the environment alone; each cell is (shortcut - reference) / reference of "
+       "the mean luminance over the pixels of that N.V bin (docs/envmap.md).</p>\n";
+  const auto table = [&](const std::vector<IblErrorRow>& rows, const std::string& first) {
+    h << "<table><tr><th>" << first << "</th>";
+    for (const IblErrorCell& c : rows.front().cells) h << fmt::format("<th>N.V {:.3g}-{:.3g}</th>", c.nv_lo, c.nv_hi);
+    h << "</tr>\n";
+    for (const IblErrorRow& row : rows) {
+      h << "<tr><th>" << (first == "roughness" ? fmt::format("{:.3g}", row.roughness) : std::string("Lambert")) << "</th>";
+      for (const IblErrorCell& c : row.cells) h << "<td>" << (c.pixels > 0 ? pct(c.error) : std::string("-")) << "</td>";
+      h << "</tr>\n";
+    }
+    h << "</table>\n";
+  };
+  const auto summary = [&](const IblErrorSummary& s) {
+    h << fmt::format("<p>mean |error| {:.2f}%, max {:.2f}%, mean at N.V &lt; 0.3 {:.2f}%</p>\n", 100.0 * s.mean_abs,
+                     100.0 * s.max_abs, 100.0 * s.grazing_mean_abs);
+  };
+  h << "<h2>Split sum (prefiltered GGX chain x DFG table)</h2>\n";
+  table(map.split_sum, "roughness");
+  summary(map.split_sum_summary);
+  h << fmt::format("<p><img src=\"split_sum_error.png\" alt=\"|error| per cell, white at {:.3g}\"> |error| per cell "
+                   "(rows: roughness, top the smoothest; columns: N.V from 0), white at {:.3g}.</p>\n", scale, scale);
+  h << "<h2>Split sum read along the dominant direction normalize(mix(R, n, &alpha;<sup>2</sup>))</h2>\n"
+       "<p>The same chain and table (the same storage), looked up toward the normal as the lobe leans at oblique "
+       "view (kernels/game_ambient.sl game_split_sum_direction).</p>\n";
+  table(map.corrected, "roughness");
+  summary(map.corrected_summary);
+  h << fmt::format("<p>At N.V &lt; 0.3 the mean |error| falls by {:.1f}% of the uncorrected split sum's.</p>\n",
+                   100.0 * map.grazing_reduction);
+  h << fmt::format("<p><img src=\"corrected_error.png\" alt=\"|error| per cell, white at {:.3g}\"> the same scale."
+                   "</p>\n", scale);
+  h << "<h2>SH9 irradiance (white Lambert sphere)</h2>\n";
+  table({map.sh}, "");
+  summary(map.sh_summary);
+  h << "<p><img src=\"split_sum_error.svg\" alt=\"signed error against N.V\" width=\"800\"></p>\n</body></html>\n";
+  return h.str();
+}
+
+}  // namespace
+
+std::vector<std::string> ibl_error_file_names() {
+  return {"ibl_error.json", "split_sum_error.png", "split_sum_error.svg", "index.html", "corrected_error.png"};
+}
+
+nlohmann::json write_ibl_error_files(const IblErrorMap& map, const IblErrorHeader& h, const std::filesystem::path& dir) {
+  const double scale = std::max(0.01, map.split_sum_summary.max_abs);
+  nlohmann::json rows = nlohmann::json::array();
+  for (const IblErrorRow& row : map.split_sum) rows.push_back({{"roughness", row.roughness}, {"cells", cells_json(row)}});
+  nlohmann::json corrected_rows = nlohmann::json::array();
+  for (const IblErrorRow& row : map.corrected) {
+    corrected_rows.push_back({{"roughness", row.roughness}, {"cells", cells_json(row)}});
+  }
+  nlohmann::json pj = nlohmann::json::object();
+  for (const auto& [k, v] : h.params) pj[k] = v;
+  nlohmann::json files = nlohmann::json::array();
+  const std::vector<std::string> names = ibl_error_file_names();
+  for (const auto& n : names) files.push_back((dir / n).string());
+  const nlohmann::json j = {
+      {"input", h.input}, {"model", map.model}, {"params", pj}, {"nv_bins", h.nv_bins}, {"size", h.size}, {"spp", h.spp},
+      {"seed", h.seed}, {"specular_size", h.specular_size}, {"error", "(shortcut - reference) / reference of the mean luminance of a bin's pixels"},
+      {"split_sum", {{"rows", rows}, {"summary", summary_json(map.split_sum_summary)}, {"heat_scale", scale}}},
+      {"corrected", {{"direction", "dominant: normalize(mix(R, n, alpha^2)), alpha = roughness^2"},
+                     {"rows", corrected_rows}, {"summary", summary_json(map.corrected_summary)},
+                     {"grazing_reduction", map.grazing_reduction}}},
+      {"sh", {{"cells", cells_json(map.sh)}, {"summary", summary_json(map.sh_summary)}}},
+      {"outputs", files}, {"seconds", map.seconds}};
+  const std::string text = j.dump(2) + "\n";
+  unwrap(write_file_atomically(dir / names[0], std::vector<char>(text.begin(), text.end())));
+  unwrap(write_image(heat_grid(map.split_sum, scale), dir / names[1]));
+  unwrap(write_plot(error_plot(map, h.input), dir / names[2]));
+  const std::string page = html_page(map, h.input, scale);
+  unwrap(write_file_atomically(dir / names[3], std::vector<char>(page.begin(), page.end())));
+  unwrap(write_image(heat_grid(map.corrected, scale), dir / names[4]));
+  return j;
+}
+
+}  // namespace shadelab::cli
