@@ -52,20 +52,6 @@ struct ReportOptions {
   bool json = false;
 };
 
-std::string html_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '&': o += "&amp;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
-
 // Reference / game exit radiance of wrapped diffuse under a uniform environment: the hemisphere integral of
 // (cos + w)/(pi (1 + w)^2) is (1 + 2w)/(1 + w)^2, while the SH wrap factors' band 0 (1) counts the whole
 // kernel, below the horizon included (wrapped_diffuse.h).
@@ -265,7 +251,7 @@ void run_report(const ReportOptions& o) {
     header.spp = io.spp;
     header.specular_size = io.game.specular_size;
     header.seed = io.seed;
-    (void)write_ibl_error_files(map, header, sub);
+    const nlohmann::json written = write_ibl_error_files(map, header, sub);
     const auto pct = [](double v) { return 100.0 * v; };
     body += fmt::format(
         "<h2>Image-based lighting: the shortcuts against the path tracer</h2>\n<p>A ggx sphere lit by this scene's "
@@ -278,13 +264,10 @@ void run_report(const ReportOptions& o) {
         pct(map.split_sum_summary.mean_abs), pct(map.split_sum_summary.max_abs), pct(map.split_sum_summary.grazing_mean_abs),
         pct(map.corrected_summary.mean_abs), pct(map.corrected_summary.max_abs), pct(map.corrected_summary.grazing_mean_abs),
         pct(map.sh_summary.mean_abs), pct(map.sh_summary.max_abs));
-    const auto summary = [](const IblErrorSummary& v) {
-      return nlohmann::json{{"mean_abs_error", v.mean_abs}, {"max_abs_error", v.max_abs},
-                            {"grazing_mean_abs_error", v.grazing_mean_abs}};
-    };
-    ibl_json = {{"page", (sub / "index.html").string()}, {"split_sum", summary(map.split_sum_summary)},
-                {"corrected", summary(map.corrected_summary)}, {"grazing_reduction", map.grazing_reduction},
-                {"sh", summary(map.sh_summary)}, {"seconds", map.seconds}};
+    // The summaries as ibl_error.json holds them.
+    ibl_json = {{"page", (sub / "index.html").string()}, {"split_sum", written["split_sum"]["summary"]},
+                {"corrected", written["corrected"]["summary"]}, {"grazing_reduction", map.grazing_reduction},
+                {"sh", written["sh"]["summary"]}, {"seconds", map.seconds}};
   }
   const std::string html = fmt::format(
       "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>shadelab report: {0}</title>\n<style>body{{font-family:sans-serif;"

@@ -69,18 +69,6 @@ LinePlot error_plot(const IblErrorMap& map, const std::string& input) {
   return p;
 }
 
-std::string html_escape(const std::string& s) {
-  std::string out;
-  for (const char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
-
 std::string html_page(const IblErrorMap& map, const std::string& input, double scale) {
   std::ostringstream h;
   const auto pct = [](double v) { return fmt::format("{:+.2f}%", 100.0 * v); };
