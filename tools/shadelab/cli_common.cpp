@@ -126,20 +126,6 @@ const Scene& built_in_scene() {
   return scene;
 }
 
-std::string html_escape(const std::string& s) {
-  std::string o;
-  for (const char c : s) {
-    switch (c) {
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '&': o += "&amp;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
-
 void warn(const std::string& message) { std::cerr << "shadelab: warning: " << printable_message(message) << "\n"; }
 
 std::vector<CommandEntry>& command_registry() {

@@ -76,9 +76,6 @@ const Scene& built_in_scene();
 // A warning line on stderr ("shadelab: warning: ..."), printable and bounded like an error.
 void warn(const std::string& message);
 
-// Text for an HTML page: < > & " as entities (the report and ibl-error pages).
-std::string html_escape(const std::string& s);
-
 // The whole command line (main.cpp): parses argv, runs the command, maps errors to exit codes 0/1/2/3.
 int run_cli(int argc, const char* const* argv);
 

@@ -26,6 +26,7 @@
 #include <map>
 
 #include "cli_common.h"
+#include "shadelab/core/text.h"
 #include "ibl_error_page.h"
 #include "progress.h"
 #include "shadelab/brdf/wrapped_diffuse.h"
@@ -217,8 +218,8 @@ void run_report(const ReportOptions& o) {
       }
       materials.push_back(entry);
       rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4f}{}</td></tr>\n",
-                          html_escape(scene.materials[m].name), html_escape(scene.materials[m].model), f.pixels, f.rmse,
-                          f.relative_mse, f.luminance_ratio, html_escape(note));
+                          xml_escape(scene.materials[m].name), xml_escape(scene.materials[m].model), f.pixels, f.rmse,
+                          f.relative_mse, f.luminance_ratio, xml_escape(note));
     }
     sections.push_back({{"lighting", kind}, {"rmse", d.rmse}, {"relative_mse", d.relative_mse}, {"max_error", d.max_abs_error},
                         {"luminance_ratio", d.mean_luminance_ratio}, {"ssim", std::isfinite(d.ssim) ? nlohmann::json(d.ssim) : nlohmann::json(nullptr)},
@@ -280,7 +281,7 @@ void run_report(const ReportOptions& o) {
       "cos &gt; -w; the BRDF is 0 below the horizon, so under a uniform environment game shading gives kd and the reference kd (1+2w)/(1+w)^2 "
       "(0.889 kd at w = 0.5). Wrapped materials show the expected ratio beside the measured one.</p>\n{1}"
       "</body></html>\n",
-      html_escape(scene.source), body);
+      xml_escape(scene.source), body);
   unwrap(write_file_atomically(dir / "index.html", std::vector<char>(html.begin(), html.end())));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (o.json) {

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cli_common.h"
+#include "shadelab/core/text.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/image/metrics.h"
 #include "shadelab/plot/plot.h"
@@ -73,11 +74,11 @@ std::string html_page(const IblErrorMap& map, const std::string& input, double s
   std::ostringstream h;
   const auto pct = [](double v) { return fmt::format("{:+.2f}%", 100.0 * v); };
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>shadelab ibl-error: "
-    << html_escape(std::filesystem::path(input).filename().string()) << "</title>\n"
+    << xml_escape(std::filesystem::path(input).filename().string()) << "</title>\n"
     << "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #999;"
        "padding:2px 6px;text-align:right}</style></head><body>\n"
     << "<h1>Image-based lighting: the shortcuts against the path tracer</h1>\n<p>Environment <code>"
-    << html_escape(input) << "</code>, model <code>" << html_escape(map.model)
+    << xml_escape(input) << "</code>, model <code>" << xml_escape(map.model)
     << "</code>. A unit sphere lit by the environment alone; each cell is (shortcut - reference) / reference of "
        "the mean luminance over the pixels of that N.V bin (docs/envmap.md).</p>\n";
   const auto table = [&](const std::vector<IblErrorRow>& rows, const std::string& first) {

@@ -7,6 +7,9 @@
 //   library messages).
 // - printable_message(text): the whole line the CLI prints; a message longer than max_message_bytes keeps
 //   its start (file, field) and its end (the reason) and drops the middle.
+// - xml_escape(text): text for XML or HTML content and attribute values (SVG <title>, report pages): & < > " '
+//   escaped, the control characters XML 1.0 forbids (all below 0x20 but tab, line feed, carriage return)
+//   replaced by spaces.
 #pragma once
 
 #include <algorithm>
@@ -102,6 +105,24 @@ inline std::string printable_message(std::string_view text, std::size_t max_byte
     if (all[k] == '\\' && k + 1 < all.size() && all[k + 1] == 'x') tail_start = k + 4;
   }
   return all.substr(0, head_end) + " ... " + all.substr(tail_start);
+}
+
+inline std::string xml_escape(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default:
+        // XML 1.0 section 2.2: no control characters but tab, line feed and carriage return.
+        out += (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') ? ' ' : c;
+    }
+  }
+  return out;
 }
 
 }  // namespace shadelab

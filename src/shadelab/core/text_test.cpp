@@ -57,3 +57,40 @@ TEST(Text, WholeMessagesKeepTheirStartAndEnd) {
 
 }  // namespace
 }  // namespace shadelab
+
+// xml_escape against its inverse: decoding the five entities gives back the input with the forbidden control
+// bytes as spaces, and the output holds none of & < > " ' unescaped nor any forbidden control byte.
+TEST(Text, XmlEscapeDecodesBackAndLeavesNoMarkup) {
+  std::string all;
+  for (int b = 1; b < 256; ++b) all += static_cast<char>(b);
+  all += "a&amp;b<c>\"'";
+  const std::string out = shadelab::xml_escape(all);
+  std::string decoded, expected;
+  for (std::size_t i = 0; i < out.size();) {
+    const auto c = static_cast<unsigned char>(out[i]);
+    ASSERT_NE(c, '<');
+    ASSERT_NE(c, '>');
+    ASSERT_NE(c, '"');
+    ASSERT_NE(c, '\'');
+    ASSERT_FALSE(c < 0x20 && c != '\t' && c != '\n' && c != '\r') << "control byte " << int(c) << " kept";
+    if (c == '&') {
+      const std::size_t semi = out.find(';', i);
+      ASSERT_NE(semi, std::string::npos);
+      const std::string entity = out.substr(i, semi + 1 - i);
+      if (entity == "&amp;") decoded += '&';
+      else if (entity == "&lt;") decoded += '<';
+      else if (entity == "&gt;") decoded += '>';
+      else if (entity == "&quot;") decoded += '"';
+      else if (entity == "&apos;") decoded += '\'';
+      else FAIL() << "unknown entity " << entity;
+      i = semi + 1;
+    } else {
+      decoded += out[i++];
+    }
+  }
+  for (const char c : all) {
+    const auto b = static_cast<unsigned char>(c);
+    expected += (b < 0x20 && c != '\t' && c != '\n' && c != '\r') ? ' ' : c;
+  }
+  EXPECT_EQ(decoded, expected);
+}

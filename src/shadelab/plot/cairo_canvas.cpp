@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "shadelab/core/constants.h"
+#include "shadelab/core/text.h"
 #include "shadelab/image/srgb.h"
 
 namespace shadelab::plot_detail {
@@ -468,24 +469,6 @@ Result<std::vector<char>> render_with_cairo(PlotFormat format, int width, int he
     return finish_svg(bytes, svg_title, svg_desc);
   }
   return bytes;
-}
-
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default:
-        // XML 1.0 allows no control characters but tab, line feed and carriage return.
-        out += (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') ? ' ' : c;
-    }
-  }
-  return out;
 }
 
 }  // namespace shadelab::plot_detail

@@ -144,7 +144,4 @@ Result<std::vector<char>> render_with_cairo(PlotFormat format, int width, int he
                                             const std::function<void(Canvas&)>& draw, const std::string& svg_title,
                                             const std::string& svg_desc);
 
-// `text` with & < > " ' escaped and the control characters XML forbids replaced by spaces.
-std::string xml_escape(std::string_view text);
-
 }  // namespace shadelab::plot_detail
