@@ -83,8 +83,8 @@ class Brdf {
   }
   // The same, checking first that wi[i] and wo[i] are unit length (is_unit_direction): it stops at the first
   // pair where one is not and returns its index (n when every pair passed), with out written for the pairs
-  // before it only. The check runs in the same loop, under the loads, so it costs next to nothing; the
-  // Python module's Brdf.eval calls this on NumPy's arrays in place.
+  // before it only. The check runs on blocks of 64 pairs ahead of their eval (vectorized where the CPU has
+  // AVX2: brdf/unit_check.cpp); the Python module's Brdf.eval calls this on NumPy's arrays in place.
   [[nodiscard]] std::size_t eval_batch_checked(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n) const {
     return eval_pairs(wi, wo, out, n, true);
   }
@@ -126,6 +126,12 @@ inline std::size_t Brdf::eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, st
 
 using BrdfPtr = std::unique_ptr<const Brdf>;
 
+namespace brdf_detail {
+// True when is_unit_direction(wi[i]) and is_unit_direction(wo[i]) for every i < n (brdf/unit_check.cpp:
+// the same test, vectorized).
+bool all_unit_directions(const Vec3* wi, const Vec3* wo, std::size_t n);
+}  // namespace brdf_detail
+
 // The loop of every model's eval_pairs: out[i] = Kernel(state, wi[i], wo[i]), the same call the model's eval
 // makes. The state is copied into a local once, so the stores to out cannot alias it and it stays in
 // registers; Kernel is a template argument, so the call is direct and inlines (one call site, so the
@@ -140,12 +146,7 @@ std::size_t eval_kernel_batch(const State& state, const Vec3* wi, const Vec3* wo
     std::size_t end = n - b < block ? n : b + block;
     bool stop = false;
     if (check_unit) {
-      bool unit = true;
-      for (std::size_t i = b; i < end; ++i) {
-        unit &= is_unit_direction(wi[i]);
-        unit &= is_unit_direction(wo[i]);
-      }
-      if (!unit) {
+      if (!brdf_detail::all_unit_directions(wi + b, wo + b, end - b)) {
         end = b;
         while (is_unit_direction(wi[end]) && is_unit_direction(wo[end])) ++end;
         stop = true;

@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shadelab/core/constants.h"
@@ -56,20 +57,37 @@ TEST(BakeAccuracy, LineSumsEqualThePerTexelSumOnACube) {
       }
 }
 
+// Even sizes take the paired rings (ring y and h - 1 - y on one line) and, for every output, the antipode
+// pairing of the normals; 63 x 31 takes single rings. Bright texels above and below the horizon row, so
+// each sits on both the run ring and the partner ring of some line. Outputs: a cube and lat-longs of even
+// (paired normals) and odd (no antipodes) width.
 TEST(BakeAccuracy, LineSumsEqualThePerTexelSumOnALatLong) {
-  Image ll(64, 32);
-  for (int y = 0; y < 32; ++y)
-    for (int x = 0; x < 64; ++x) ll.set(x, y, Rgb{0.05 + hash01(x, y, 1), 0.05 + hash01(x, y, 2), 0.05 + hash01(x, y, 3)});
-  ll.set(40, 15, Rgb::gray(1e4));  // just above the horizon
-  ConvolveOptions o;
-  o.max_input_size = 0;
-  const CubeMap e = irradiance_cube(ll, 8, RadianceUnits::radiometric, o);
-  for (int f = 0; f < 6; ++f)
-    for (int y = 0; y < 8; ++y)
-      for (int x = 0; x < 8; ++x) {
-        const Rgb ref = irradiance_brute_force(ll, texel_direction(f, x, y, 8));
-        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(e.texel(f, x, y)[ch], ref[ch], 1e-5 * ref[ch]) << f << " " << x << " " << y;
-      }
+  for (const auto& [w, h] : {std::pair{64, 32}, std::pair{63, 31}}) {
+    Image ll(w, h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) ll.set(x, y, Rgb{0.05 + hash01(x, y, 1), 0.05 + hash01(x, y, 2), 0.05 + hash01(x, y, 3)});
+    ll.set(40, h / 2 - 1, Rgb::gray(1e4));  // just above the horizon
+    ll.set(10, h / 2 + 1, Rgb{3e3, 1e3, 2e2});  // just below it
+    ConvolveOptions o;
+    o.max_input_size = 0;
+    const CubeMap e = irradiance_cube(ll, 8, RadianceUnits::radiometric, o);
+    for (int f = 0; f < 6; ++f)
+      for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+          const Rgb ref = irradiance_brute_force(ll, texel_direction(f, x, y, 8));
+          for (int ch = 0; ch < 3; ++ch)
+            EXPECT_NEAR(e.texel(f, x, y)[ch], ref[ch], 1e-5 * ref[ch]) << w << "x" << h << " face " << f << " " << x << " " << y;
+        }
+    for (const int out_w : {16, 15}) {
+      const Image el = irradiance_latlong(ll, out_w, RadianceUnits::radiometric, o);
+      for (int y = 0; y < el.height; ++y)
+        for (int x = 0; x < el.width; ++x) {
+          const Rgb ref = irradiance_brute_force(ll, latlong_direction((x + 0.5) / el.width, (y + 0.5) / el.height));
+          for (int ch = 0; ch < 3; ++ch)
+            EXPECT_NEAR(el.at(x, y)[ch], ref[ch], 1e-5 * ref[ch]) << w << "x" << h << " lat-long " << out_w << " " << x << " " << y;
+        }
+    }
+  }
 }
 
 TEST(BakeAccuracy, ShProjectionsEqualThePerTexelSum) {

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -96,6 +97,10 @@ struct Lines {
   int face_size = 0;    // cube rows: N (line l is row l % N of face l / N)
   std::vector<float> param;   // cube rows: tc of the row; rings: cot(theta) of the ring
   std::vector<float> prefix;  // count * (length + 1) * 9, plus 4 floats of padding for 4-wide loads
+  // Added to every normal's sum: sum over the lines of K_l (below), 9 values as a prefix entry.
+  std::array<double, 9> constant{};
+  // M = sum of L dOmega d over every texel of the map (9 values as a prefix entry), in double.
+  std::array<double, 9> first_moment{};
 
   const float* entry(int line, int k) const {
     return prefix.data() + (static_cast<std::size_t>(line) * static_cast<std::size_t>(length + 1) + static_cast<std::size_t>(k)) * 9;
@@ -139,31 +144,43 @@ Lines cube_lines(const CubeMap& cube) {
     }
     store_prefix(lines, l, m);
   });
+  for (int l = 0; l < lines.count; ++l) {
+    const float* t = lines.entry(l, lines.length);
+    for (std::size_t i = 0; i < 9; ++i) lines.first_moment[i] += static_cast<double>(t[i]);
+  }
   return lines;
 }
 
+// Rings of a lat-long. With an even width and height, ring y and ring y' = h - 1 - y share one line: texel
+// (x + w/2 mod w, y') is the antipode of texel (x, y) (phi + pi, pi - theta), so it lies in n's hemisphere
+// exactly when (x, y) does not. The pair's sum over n's hemisphere is then
+//   sum_{x in run} m_y[x] + sum_{x not in run} m_y'[x + w/2] = K + sum_{x in run} (m_y[x] - m_y'[x + w/2])
+// with K = sum_x m_y'[x] (the whole of ring y'), and m_y[x] - m_y'[x + w/2] = (L_y[x] + L_y'[x + w/2]) dOmega
+// d(x, y) (d' = -d): a sum, no cancellation. The same texels as two lines, in half the line steps; the run is
+// ring y's. The K of all lines are summed once (Lines::constant).
 Lines ring_lines(const Image& ll) {
   const int w = ll.width;
   const int h = ll.height;
+  const bool paired = w % 2 == 0 && h % 2 == 0;
   Lines lines;
   lines.rings = true;
-  lines.count = h;
+  lines.count = paired ? h / 2 : h;
   lines.length = w;
-  lines.param.resize(static_cast<std::size_t>(h));
-  lines.prefix.assign(static_cast<std::size_t>(h) * static_cast<std::size_t>(w + 1) * 9 + 4, 0.0f);
+  lines.param.resize(static_cast<std::size_t>(lines.count));
+  lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(w + 1) * 9 + 4, 0.0f);
   std::vector<double> cos_phi(static_cast<std::size_t>(w)), sin_phi(static_cast<std::size_t>(w));
   for (int x = 0; x < w; ++x) {
     const double phi = two_pi * ((x + 0.5) / w - 0.5);  // latlong.h: phi = 2 pi (u - 0.5)
     cos_phi[static_cast<std::size_t>(x)] = std::cos(phi);
     sin_phi[static_cast<std::size_t>(x)] = std::sin(phi);
   }
-  tbb::parallel_for(0, h, [&](int y) {
+  // Per line: K (the partner ring's total) and the line's share of M, summed afterwards in line order.
+  std::vector<std::array<double, 9>> k_line(static_cast<std::size_t>(lines.count)), m_line(static_cast<std::size_t>(lines.count));
+  const auto ring_moments = [&](int y, std::vector<double>& m) {
     const double theta = pi * (y + 0.5) / h;
     const double st = std::sin(theta);
     const double ct = std::cos(theta);
-    lines.param[static_cast<std::size_t>(y)] = static_cast<float>(ct / st);
     const double d_omega = latlong_texel_solid_angle(y, w, h);
-    std::vector<double> m(static_cast<std::size_t>(w) * 9);
     for (int x = 0; x < w; ++x) {
       const Vec3 d{st * cos_phi[static_cast<std::size_t>(x)], ct, st * sin_phi[static_cast<std::size_t>(x)]};
       const Rgb l_omega = ll.at(x, y) * d_omega;
@@ -173,8 +190,37 @@ Lines ring_lines(const Image& ll) {
         m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
       }
     }
+  };
+  const auto total = [&](const std::vector<double>& m, std::array<double, 9>& t) {
+    for (int x = 0; x < w; ++x)
+      for (std::size_t i = 0; i < 9; ++i) t[i] += m[static_cast<std::size_t>(x) * 9 + i];
+  };
+  tbb::parallel_for(0, lines.count, [&](int y) {
+    const double theta = pi * (y + 0.5) / h;
+    lines.param[static_cast<std::size_t>(y)] = static_cast<float>(std::cos(theta) / std::sin(theta));
+    std::vector<double> m(static_cast<std::size_t>(w) * 9);
+    ring_moments(y, m);
+    std::array<double, 9>& mt = m_line[static_cast<std::size_t>(y)];
+    total(m, mt);
+    if (paired) {
+      std::vector<double> partner(static_cast<std::size_t>(w) * 9);
+      ring_moments(h - 1 - y, partner);
+      std::array<double, 9>& k = k_line[static_cast<std::size_t>(y)];
+      total(partner, k);
+      for (std::size_t i = 0; i < 9; ++i) mt[i] += k[i];
+      for (int x = 0; x < w; ++x) {
+        const auto xs = static_cast<std::size_t>((x + w / 2) % w);
+        for (std::size_t i = 0; i < 9; ++i) m[static_cast<std::size_t>(x) * 9 + i] -= partner[xs * 9 + i];
+      }
+    }
     store_prefix(lines, y, m);
   });
+  for (std::size_t l = 0; l < k_line.size(); ++l) {
+    for (std::size_t i = 0; i < 9; ++i) {
+      lines.constant[i] += k_line[l][i];
+      lines.first_moment[i] += m_line[l][i];
+    }
+  }
   return lines;
 }
 
@@ -296,6 +342,9 @@ SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& 
     for (int c = 0; c < 3; ++c) {
       const f4 a = acc[3 * i + static_cast<std::size_t>(c)];
       e[c] = static_cast<double>(a[0]) + static_cast<double>(a[1]) + static_cast<double>(a[2]);
+      const auto k = static_cast<std::size_t>(3 * c);
+      e[c] += static_cast<double>(b.n4[4 * i]) * lines.constant[k] + static_cast<double>(b.n4[4 * i + 1]) * lines.constant[k + 1] +
+              static_cast<double>(b.n4[4 * i + 2]) * lines.constant[k + 2];
     }
     out[i] = e;
   }
@@ -332,6 +381,86 @@ std::vector<Rgb> convolve(const Lines& lines, const std::vector<Vec3>& normals, 
     if (progress) progress(static_cast<double>(end) / blocks);
   }
   return out;
+}
+
+// E(n) for every normal, using the antipodes: max(0, x) - max(0, -x) = x, so for the same emitters (every
+// texel counts on exactly one side of n's horizon) E(-n) = E(n) - n.M with M = sum L dOmega d, the first
+// moment of the whole map (per channel). Of each pair (n, -n) only the side with n.M_c <= 0 in every channel
+// is convolved; the other is E(n) + |n.M_c|, a sum of non-negative terms, so it keeps E(n)'s relative
+// rounding error (taking it the other way round, E(-n) = E(n) - n.M with n.M > 0, would cancel on the dark
+// side). A pair whose channels disagree in sign is convolved on both sides. antipode[i] is the index of
+// -normals[i], or -1.
+std::vector<Rgb> convolve_pairs(const Lines& lines, const std::vector<Vec3>& normals, const std::vector<int>& antipode,
+                                const ProgressFn& progress) {
+  double m[3][3] = {};  // m[c] = M of channel c (x, y, z)
+  for (std::size_t c = 0; c < 3; ++c)
+    for (std::size_t k = 0; k < 3; ++k) m[c][k] = lines.first_moment[3 * c + k];
+  const auto n_dot_m = [&](const Vec3& n, int c) { return n.x * m[c][0] + n.y * m[c][1] + n.z * m[c][2]; };
+  const auto dark = [&](const Vec3& n) {
+    return n_dot_m(n, 0) <= 0.0 && n_dot_m(n, 1) <= 0.0 && n_dot_m(n, 2) <= 0.0;
+  };
+  std::vector<int> from(normals.size(), -1);  // from[j] = i: E(j) derived from E(i)
+  std::vector<Vec3> direct;
+  std::vector<std::size_t> direct_index;
+  direct.reserve(normals.size() / 2 + 16);
+  for (std::size_t i = 0; i < normals.size(); ++i) {
+    const int j = antipode[i];
+    if (j >= 0 && from[i] < 0) {
+      const auto jj = static_cast<std::size_t>(j);
+      if (from[jj] < 0 && jj > i) {
+        if (dark(normals[i])) {
+          from[jj] = static_cast<int>(i);
+        } else if (dark(normals[jj])) {
+          from[i] = j;
+        }
+      }
+    }
+  }
+  for (std::size_t i = 0; i < normals.size(); ++i) {
+    if (from[i] < 0) {
+      direct.push_back(normals[i]);
+      direct_index.push_back(i);
+    }
+  }
+  const std::vector<Rgb> e_direct = convolve(lines, direct, progress);
+  std::vector<Rgb> out(normals.size());
+  for (std::size_t k = 0; k < direct.size(); ++k) out[direct_index[k]] = e_direct[k];
+  for (std::size_t j = 0; j < normals.size(); ++j) {
+    if (from[j] < 0) continue;
+    const auto i = static_cast<std::size_t>(from[j]);
+    for (int c = 0; c < 3; ++c) out[j][c] = out[i][c] - n_dot_m(normals[i], c);  // n_i.M_c <= 0
+  }
+  return out;
+}
+
+// antipode[i] = index of the texel whose centre is -texel_direction(i), or -1 (faces are paired by the
+// mirror symmetry of cube_direction; each pairing is checked against the directions).
+std::vector<int> cube_antipodes(const std::vector<Vec3>& normals, int size) {
+  std::vector<int> a(normals.size(), -1);
+  for (std::size_t i = 0; i < normals.size(); ++i) {
+    const CubeCoord c = cube_coord(-normals[i]);
+    const int x = std::clamp(static_cast<int>(c.s * size), 0, size - 1);
+    const int y = std::clamp(static_cast<int>(c.t * size), 0, size - 1);
+    const std::size_t j = (static_cast<std::size_t>(c.face) * static_cast<std::size_t>(size) + static_cast<std::size_t>(y)) *
+                              static_cast<std::size_t>(size) + static_cast<std::size_t>(x);
+    if (j < normals.size() && dot(normals[j], normals[i]) < -1.0 + 1e-12) a[i] = static_cast<int>(j);
+  }
+  return a;
+}
+
+// The same for lat-long texel centres: (x, y) and (x + w/2 mod w, h - 1 - y) when w is even.
+std::vector<int> latlong_antipodes(const std::vector<Vec3>& normals, int width, int height) {
+  std::vector<int> a(normals.size(), -1);
+  if (width % 2 != 0) return a;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+      const std::size_t j = static_cast<std::size_t>(height - 1 - y) * static_cast<std::size_t>(width) +
+                            static_cast<std::size_t>((x + width / 2) % width);
+      if (dot(normals[j], normals[i]) < -1.0 + 1e-12) a[i] = static_cast<int>(j);
+    }
+  }
+  return a;
 }
 
 std::vector<Vec3> cube_normals(int size) {
@@ -388,24 +517,30 @@ double unit_scale(RadianceUnits units) { return units == RadianceUnits::game ? i
 
 CubeMap irradiance_cube(const CubeMap& radiance, int size, RadianceUnits units, const ConvolveOptions& options) {
   const Lines lines = prepared_lines(radiance, options.max_input_size);
-  return to_cube(convolve(lines, cube_normals(size), options.progress), size, unit_scale(units));
+  const std::vector<Vec3> normals = cube_normals(size);
+  return to_cube(convolve_pairs(lines, normals, cube_antipodes(normals, size), options.progress), size, unit_scale(units));
 }
 
 CubeMap irradiance_cube(const Image& latlong, int size, RadianceUnits units, const ConvolveOptions& options) {
   const Lines lines = prepared_lines(latlong, options.max_input_size);
-  return to_cube(convolve(lines, cube_normals(size), options.progress), size, unit_scale(units));
+  const std::vector<Vec3> normals = cube_normals(size);
+  return to_cube(convolve_pairs(lines, normals, cube_antipodes(normals, size), options.progress), size, unit_scale(units));
 }
 
 Image irradiance_latlong(const CubeMap& radiance, int width, RadianceUnits units, const ConvolveOptions& options) {
   const int height = std::max(1, width / 2);
   const Lines lines = prepared_lines(radiance, options.max_input_size);
-  return to_latlong(convolve(lines, latlong_normals(width, height), options.progress), width, height, unit_scale(units));
+  const std::vector<Vec3> normals = latlong_normals(width, height);
+  return to_latlong(convolve_pairs(lines, normals, latlong_antipodes(normals, width, height), options.progress), width,
+                    height, unit_scale(units));
 }
 
 Image irradiance_latlong(const Image& latlong, int width, RadianceUnits units, const ConvolveOptions& options) {
   const int height = std::max(1, width / 2);
   const Lines lines = prepared_lines(latlong, options.max_input_size);
-  return to_latlong(convolve(lines, latlong_normals(width, height), options.progress), width, height, unit_scale(units));
+  const std::vector<Vec3> normals = latlong_normals(width, height);
+  return to_latlong(convolve_pairs(lines, normals, latlong_antipodes(normals, width, height), options.progress), width,
+                    height, unit_scale(units));
 }
 
 }  // namespace shadelab
