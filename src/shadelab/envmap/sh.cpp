@@ -57,12 +57,19 @@ using namespace simd;
 // weight with no de-interleaving; the channel of float j of the row is j mod 3. Two passes (k = 0..2, then
 // 3..4) keep the accumulators in registers (9 and 6 of the 16); the row (12 n bytes) stays in L1 between.
 template <int K0, int K1>
-SHADELAB_INLINE void row_pass(const float* rgb, const float* const g3[5], int n, float out[15]) {
+SHADELAB_INLINE void row_pass(const float* rgb, const float* const g3[5], int n, float out[15], const float* next) {
   constexpr int K = K1 - K0;
   f8 acc[K][3] = {};
   int x = 0;
   for (; x + 8 <= n; x += 8) {
     const float* p = rgb + 3 * x;
+    if (next != nullptr) {
+      // The row to be read next is elsewhere in memory (the next face's row): ask for it now, 96 bytes of it
+      // per step as this row is read, so that it arrives before it is needed (a row is too short a stream for
+      // the hardware prefetcher to get ahead of).
+      __builtin_prefetch(next + 3 * x);
+      __builtin_prefetch(next + 3 * x + 16);
+    }
     const f8 v0 = load8(p), v1 = load8(p + 8), v2 = load8(p + 16);
     for (int k = 0; k < K; ++k) {
       const float* w = g3[K0 + k] + 3 * x;
@@ -83,16 +90,19 @@ SHADELAB_INLINE void row_pass(const float* rgb, const float* const g3[5], int n,
       for (int c = 0; c < 3; ++c) out[3 * k + c] += g3[k][3 * x + c] * rgb[3 * x + c];
 }
 
-SHADELAB_INLINE void row_sums5_impl(const float* rgb, const float* const g3[5], int n, float out[15]) {
+SHADELAB_INLINE void row_sums5_impl(const float* rgb, const float* const g3[5], int n, float out[15], const float* next) {
   for (int i = 0; i < 15; ++i) out[i] = 0.0f;
-  row_pass<0, 3>(rgb, g3, n, out);
-  row_pass<3, 5>(rgb, g3, n, out);
+  row_pass<0, 3>(rgb, g3, n, out, next);
+  row_pass<3, 5>(rgb, g3, n, out, nullptr);
 }
 
-SHADELAB_TARGET_AVX2 void row_sums5_avx2(const float* rgb, const float* const g[5], int n, float out[15]) {
-  row_sums5_impl(rgb, g, n, out);
+// `next`: the row that will be summed next (prefetched while this one is read), or nullptr.
+SHADELAB_TARGET_AVX2 void row_sums5_avx2(const float* rgb, const float* const g[5], int n, float out[15], const float* next) {
+  row_sums5_impl(rgb, g, n, out, next);
 }
-void row_sums5_base(const float* rgb, const float* const g[5], int n, float out[15]) { row_sums5_impl(rgb, g, n, out); }
+void row_sums5_base(const float* rgb, const float* const g[5], int n, float out[15], const float* next) {
+  row_sums5_impl(rgb, g, n, out, next);
+}
 
 using RowSums5 = std::array<double, 15>;
 
@@ -209,10 +219,14 @@ Sh9 project_sh9(const CubeMap& cube) {
       for (int f = 0; f < 6; ++f) {
         float s[15] = {};
         const float* rgb = cube.faces[static_cast<std::size_t>(f)].data.data() + yy * nn * 3;
+        // Next: the next face's row y, or after the last face the first face's next row of this range.
+        const float* next = f < 5 ? cube.faces[static_cast<std::size_t>(f + 1)].data.data() + yy * nn * 3
+                            : y + 1 < range.end() ? cube.faces[0].data.data() + (yy + 1) * nn * 3
+                                                  : nullptr;
         if (avx) {
-          row_sums5_avx2(rgb, gk, n, s);
+          row_sums5_avx2(rgb, gk, n, s, next);
         } else {
-          row_sums5_base(rgb, gk, n, s);
+          row_sums5_base(rgb, gk, n, s, next);
         }
         auto sum = [&](int k) { return Rgb{s[3 * k], s[3 * k + 1], s[3 * k + 2]}; };
         const Rgb s0 = sum(0), s1 = sum(1), s2 = sum(2), s3 = sum(3), s4 = sum(4);
@@ -272,10 +286,11 @@ Sh9 project_sh9(const Image& latlong) {
     for (int y = range.begin(); y != range.end(); ++y) {
       float s[15] = {};
       const float* rgb = latlong.data.data() + static_cast<std::size_t>(y) * ww * 3;
+      const float* next = y + 1 < range.end() ? rgb + ww * 3 : nullptr;
       if (avx) {
-        row_sums5_avx2(rgb, gk, w, s);
+        row_sums5_avx2(rgb, gk, w, s, next);
       } else {
-        row_sums5_base(rgb, gk, w, s);
+        row_sums5_base(rgb, gk, w, s, next);
       }
       auto sum = [&](int k) { return Rgb{s[3 * k], s[3 * k + 1], s[3 * k + 2]}; };
       const Rgb one = sum(0), cp = sum(1), sp = sum(2), c2 = sum(3), s2 = sum(4);
