@@ -26,7 +26,20 @@ __extension__ typedef __int128 Int128;  // GCC and Clang; -Wpedantic knows no 12
 __extension__ typedef unsigned __int128 UInt128;
 
 inline constexpr int fixed_point_bits = 40;
+static_assert(fixed_point_bits == 40, "fixed_point_scale and fixed_point_inv_scale are 2^40 and 2^-40");
 inline constexpr double fixed_point_clamp = 0x1.0p52;
+inline constexpr double fixed_point_scale = 0x1.0p40;       // 2^fixed_point_bits
+inline constexpr double fixed_point_inv_scale = 0x1.0p-40;  // 2^-fixed_point_bits
+
+// std::nearbyint in the default rounding mode (to nearest, ties to even), without the library call the
+// baseline x86-64 ISA needs: below 2^52 in magnitude, y + 2^52 has no fraction bits left, so the addition
+// rounds y to an integer by the current mode and subtracting 2^52 again is exact; from 2^52 on y is an integer.
+// (Needs strict IEEE evaluation: no fast-math, which the project never uses.)
+inline double round_half_even(double y) {
+  constexpr double big = 0x1.0p52;
+  if (!(std::abs(y) < big)) return y;
+  return y >= 0.0 ? (y + big) - big : (y - big) + big;
+}
 
 struct FixedRgb {
   Int128 c[3] = {0, 0, 0};
@@ -38,7 +51,11 @@ struct FixedRgb {
     for (int k = 0; k < 3; ++k) {
       if (!std::isfinite(ch[k])) return false;
       const double x = std::clamp(ch[k], -fixed_point_clamp, fixed_point_clamp);
-      q[k] = static_cast<Int128>(std::nearbyint(std::ldexp(x, fixed_point_bits)));
+      // x * 2^40 is exact (a power-of-2 scaling of a value at most 2^52, so no overflow, and no underflow when
+      // scaling up), as std::ldexp(x, 40) is. Integers below 2^63 in magnitude (any sample below about 8e6)
+      // convert through int64, exactly and without the 128-bit conversion routine; the rest through Int128.
+      const double r = round_half_even(x * fixed_point_scale);
+      q[k] = std::abs(r) < 0x1.0p63 ? static_cast<Int128>(static_cast<std::int64_t>(r)) : static_cast<Int128>(r);
     }
     for (int k = 0; k < 3; ++k) c[k] += q[k];
     return true;
@@ -54,9 +71,9 @@ struct FixedRgb {
   Rgb mean(std::uint64_t n) const {
     if (n == 0) return {};
     const auto d = static_cast<double>(n);
-    return {std::ldexp(static_cast<double>(c[0]), -fixed_point_bits) / d,
-            std::ldexp(static_cast<double>(c[1]), -fixed_point_bits) / d,
-            std::ldexp(static_cast<double>(c[2]), -fixed_point_bits) / d};
+    // double(c) is 0 or at least 1 in magnitude, so the scaling by 2^-40 is exact (no subnormal), as ldexp's.
+    return {static_cast<double>(c[0]) * fixed_point_inv_scale / d, static_cast<double>(c[1]) * fixed_point_inv_scale / d,
+            static_cast<double>(c[2]) * fixed_point_inv_scale / d};
   }
 };
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <vector>
@@ -43,6 +44,41 @@ TEST(FixedSum, AnyGroupingGivesTheSameSum) {
   for (const Rgb& x : v) forward += x.r;
   for (auto it = v.rbegin(); it != v.rend(); ++it) backward += it->r;
   EXPECT_NE(forward, backward);  // why the exact sum is needed at all
+}
+
+// Each sample's fixed-point value against the definition computed another way: round(v 2^40) in long double
+// (64-bit significand, so v 2^40 and its fraction are exact; rounded half to even by hand) as the
+// integer, for values across the int64 / Int128 switch (2^23), halfway cases, negatives, tiny values and the
+// clamp.
+TEST(FixedSum, EachSampleIsItsValueTimes2To40RoundedHalfToEven) {
+  std::vector<double> values = {0.0, -0.0, 0x1.0p-41, 0x1.8p-40, 0x1.4p-39, -0x1.8p-40, -0x1.4p-39, 0x1.0p-1074,
+                                0.5, -2.5e-7, 1.0 / 3.0, 8388607.75, 8388608.0, -8388608.0, 9.5e6, -1.25e9, 0x1.0p52,
+                                0x1.0p60, -0x1.0p60};
+  Pcg32 rng(7, 1);
+  for (int i = 0; i < 2000; ++i) {
+    const double v = std::ldexp(rng.next_double() - 0.5, static_cast<int>(rng.next_u32() % 120u) - 60);
+    values.push_back(v);
+    values.push_back(std::ldexp(std::floor(std::ldexp(v, 40)) + 0.5, -40));  // a halfway case
+  }
+  for (const double v : values) {
+    FixedRgb one;
+    ASSERT_TRUE(one.add({v, 0.0, 0.0}));
+    const double x = std::clamp(v, -0x1.0p52, 0x1.0p52);
+    Int128 want = 0;
+    if (std::abs(x) < 0x1.0p23) {
+      const long double y = static_cast<long double>(x) * 1099511627776.0L;  // 2^40: exact, a power-of-2 scaling
+      long double f = std::floor(y);
+      const long double frac = y - f;
+      if (frac > 0.5L || (frac == 0.5L && std::fmod(f, 2.0L) != 0.0L)) f += 1.0L;
+      want = static_cast<Int128>(f);
+    } else {
+      // |x| >= 2^23: x's last bit is at least 2^-29, so x 2^40 is an integer: floor(x) 2^40 plus the
+      // fraction's 2^40 multiple, both exact.
+      const double whole = std::floor(x);
+      want = static_cast<Int128>(whole) * (static_cast<Int128>(1) << 40) + static_cast<Int128>(std::ldexp(x - whole, 40));
+    }
+    EXPECT_TRUE(one.c[0] == want) << v;
+  }
 }
 
 TEST(FixedSum, MeanIsWithinTheQuantizationBound) {
