@@ -16,6 +16,9 @@
 // run per line (6N or H lines) instead of one term per texel (6N^2 or WH), and the result equals the
 // brute-force sum: no truncation, no error bound needed. The only difference from the per-texel sum is
 // in texels within float rounding (1e-6 rad) of the normal's horizon, whose weight n.w is below 1e-6.
+// Antipodes halve the work twice (irradiance.cpp has the identities): of each pair of output normals
+// (n, -n) one is summed and the other follows from E(-n) = E(n) - n.M (M = sum L dOmega w); a lat-long's
+// rings y and H - 1 - y share one line, since each texel of one is the antipode of a texel of the other.
 // (Band-limited shortcuts, e.g. a higher-order SH, would need a truncation bound and fail it on maps whose
 // brightest texel holds 7% of all flux next to the horizon, as Blender's night.exr does.)
 //
