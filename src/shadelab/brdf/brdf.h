@@ -62,9 +62,10 @@ struct KernelBinding {
 // The direction test of eval_batch_checked and of the Python module's direction rule: |v|^2 within 4 ulp of
 // 1 (dividing such a vector by its length would move each component by at most an ulp); false for NaN and
 // infinities.
+inline constexpr double unit_direction_tolerance = 4.0 * std::numeric_limits<double>::epsilon();
 inline bool is_unit_direction(const Vec3& v) {
   const double n2 = dot(v, v);
-  return std::abs(n2 - 1.0) <= 4.0 * std::numeric_limits<double>::epsilon();
+  return std::abs(n2 - 1.0) <= unit_direction_tolerance;
 }
 
 class Brdf {

@@ -13,7 +13,7 @@ namespace shadelab::brdf_detail {
 #endif
 
 SHADELAB_CLONES bool all_unit_directions(const Vec3* wi, const Vec3* wo, std::size_t n) {
-  constexpr double tol = 4.0 * std::numeric_limits<double>::epsilon();  // is_unit_direction's
+  constexpr double tol = unit_direction_tolerance;
   int bad = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double a = wi[i].x * wi[i].x + wi[i].y * wi[i].y + wi[i].z * wi[i].z;

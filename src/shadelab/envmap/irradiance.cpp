@@ -330,40 +330,25 @@ SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& 
       const auto o = static_cast<std::size_t>(j) * p;
       for (int i = 0; i < b.padded; i += 8) runs8(lines, b, line + j, i, lo.data() + o + i, hi.data() + o + i, wrap.data() + o + i);
     }
-    const float* total0 = lines.entry(line, lines.length);
-    const f4 tr0 = load4(total0), tg0 = load4(total0 + 3), tb0 = load4(total0 + 6);
-    // Lane 3 of each load reads the next channel's x; n's lane 3 is 0, so it adds nothing.
-    if (pair == 2) {
-      const float* total1 = lines.entry(line + 1, lines.length);
-      const f4 tr1 = load4(total1), tg1 = load4(total1 + 3), tb1 = load4(total1 + 6);
-      for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {
-        const float* e0 = lines.entry(line, lo[i]);
-        const float* e1 = lines.entry(line, hi[i]);
-        const float* g0 = lines.entry(line + 1, lo[p + i]);
-        const float* g1 = lines.entry(line + 1, hi[p + i]);
-        const f4 n = load4(b.n4.data() + 4 * i);
-        const float wr0 = wrap[i], wr1 = wrap[p + i];
-        f4 ar = acc[3 * i], ag = acc[3 * i + 1], ab = acc[3 * i + 2];
-        ar += n * (load4(e1) - load4(e0) + wr0 * tr0);
-        ag += n * (load4(e1 + 3) - load4(e0 + 3) + wr0 * tg0);
-        ab += n * (load4(e1 + 6) - load4(e0 + 6) + wr0 * tb0);
-        ar += n * (load4(g1) - load4(g0) + wr1 * tr1);
-        ag += n * (load4(g1 + 3) - load4(g0 + 3) + wr1 * tg1);
-        ab += n * (load4(g1 + 6) - load4(g0 + 6) + wr1 * tb1);
-        acc[3 * i] = ar;
-        acc[3 * i + 1] = ag;
-        acc[3 * i + 2] = ab;
+    // Line l's term of normal i for channel offset c (0, 3, 6): n . (P[hi] - P[lo] + wrap total). Lane 3 of
+    // each load reads the next channel's x; n's lane 3 is 0, so it adds nothing.
+    const auto term = [&](int l, std::size_t o, std::size_t i, const f4& n, int c) SHADELAB_INLINE_LAMBDA {
+      const float* e0 = lines.entry(l, lo[o + i]) + c;
+      const float* e1 = lines.entry(l, hi[o + i]) + c;
+      return n * (load4(e1) - load4(e0) + wrap[o + i] * load4(lines.entry(l, lines.length) + c));
+    };
+    for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {
+      const f4 n = load4(b.n4.data() + 4 * i);
+      f4 ar = acc[3 * i], ag = acc[3 * i + 1], ab = acc[3 * i + 2];
+      for (int j = 0; j < pair; ++j) {
+        const auto o = static_cast<std::size_t>(j) * p;
+        ar += term(line + j, o, i, n, 0);
+        ag += term(line + j, o, i, n, 3);
+        ab += term(line + j, o, i, n, 6);
       }
-    } else {
-      for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {
-        const float* e0 = lines.entry(line, lo[i]);
-        const float* e1 = lines.entry(line, hi[i]);
-        const f4 n = load4(b.n4.data() + 4 * i);
-        const float wr = wrap[i];
-        acc[3 * i] += n * (load4(e1) - load4(e0) + wr * tr0);
-        acc[3 * i + 1] += n * (load4(e1 + 3) - load4(e0 + 3) + wr * tg0);
-        acc[3 * i + 2] += n * (load4(e1 + 6) - load4(e0 + 6) + wr * tb0);
-      }
+      acc[3 * i] = ar;
+      acc[3 * i + 1] = ag;
+      acc[3 * i + 2] = ab;
     }
   }
   for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {

@@ -26,10 +26,9 @@ __extension__ typedef __int128 Int128;  // GCC and Clang; -Wpedantic knows no 12
 __extension__ typedef unsigned __int128 UInt128;
 
 inline constexpr int fixed_point_bits = 40;
-static_assert(fixed_point_bits == 40, "fixed_point_scale and fixed_point_inv_scale are 2^40 and 2^-40");
 inline constexpr double fixed_point_clamp = 0x1.0p52;
-inline constexpr double fixed_point_scale = 0x1.0p40;       // 2^fixed_point_bits
-inline constexpr double fixed_point_inv_scale = 0x1.0p-40;  // 2^-fixed_point_bits
+inline constexpr double fixed_point_scale = static_cast<double>(std::uint64_t{1} << fixed_point_bits);  // 2^40
+inline constexpr double fixed_point_inv_scale = 1.0 / fixed_point_scale;  // 2^-40, exact (a power of 2)
 
 // std::nearbyint in the default rounding mode (to nearest, ties to even), without the library call the
 // baseline x86-64 ISA needs: below 2^52 in magnitude, y + 2^52 has no fraction bits left, so the addition
