@@ -88,11 +88,12 @@ TEST(Prefilter, CullingChangesNothingMeasurable) {
 }
 
 TEST(Prefilter, EveryTexelOfEveryFaceMatchesTheBruteForce) {
-  // Output texels are computed in mirror pairs (x and N - 1 - x share their weights, the right one reading the
-  // mirror images of the left one's texels; the 1 x 1 level's single texel alone): an environment with no
-  // symmetry and a bright texel on each face at a different place, and every texel of every level (8, 4, 2, 1;
-  // n = 2048 .. 2, all read from the 32^2 input), both halves of every row of every face, against the brute
-  // force.
+  // Output texels are computed in groups of four mirror images ((x, y), (N - 1 - x, y), (x, N - 1 - y) and
+  // (N - 1 - x, N - 1 - y) share their weights, the images reading the mirror images of the first one's
+  // texels; the 1 x 1 level's single texel alone): an environment with no symmetry and a bright texel on each
+  // face at a different place, and every texel of every level (8, 4, 2, 1; n = 2048 .. 2, all read from the
+  // 32^2 input), all four quadrants of every face, against the brute force. A mirror image taken along the
+  // wrong local axis fails it (and BakeAccuracy.SpecularChainWithinItsStatedErrorOfTheBruteForce).
   CubeMap env(32);
   for (int f = 0; f < 6; ++f)
     for (int y = 0; y < 32; ++y)

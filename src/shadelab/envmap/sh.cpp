@@ -133,7 +133,7 @@ void row_sums5_base(const float* rgb, const float* const g[5], int n, float out[
 }
 
 // Texels per chunk of the cube projection (of each half row): its five expanded weight arrays (7.5 KiB)
-// and one face's folded chunk (3 KiB) stay in L1 while the six faces are summed over it.
+// stay in L1 while the six faces' chunks are folded and summed over them.
 constexpr int cube_chunk = 128;
 constexpr int prefetch_ahead = 6;  // (face, chunk) items ahead, into L2: 6-12 measured 10% faster from memory than 1 into L1
 
@@ -163,13 +163,18 @@ SHADELAB_INLINE void expand_weights(const float* w, const float* c, const float*
 // (the left texel's float weights serve both; the mirror's own differ from them by rounding only).
 // For `steps` blocks of 8 texels, block i at left + 24 i and its mirror texels, which lie reversed in the
 // 24 floats ending at mirror_end - 24 i: even = left + mirror and odd = left - mirror, texel by texel, the
-// mirror block reversed texel-wise (channels kept) by two-register lane shuffles. next_left / next_mirror_end:
-// the chunk folded prefetch_ahead items later (prefetched into L2), or nullptr.
-SHADELAB_INLINE void fold_chunk(const float* left, const float* mirror_end, int steps, float* even, float* odd,
-                                const float* next_left, const float* next_mirror_end) {
+// mirror block reversed texel-wise (channels kept) by two-register lane shuffles, and each summed at once
+// against the chunk's expanded weights g3 into `ra` (lane l of accumulator (k, j) adds its products in
+// ascending i, as chunk_pass does). next_left / next_mirror_end: the chunk folded prefetch_ahead items
+// later (prefetched into L2), or nullptr.
+SHADELAB_INLINE void fold_accumulate(const float* left, const float* mirror_end, int steps, const float* const g3[5],
+                                     RowAccumulators& ra, const float* next_left, const float* next_mirror_end) {
   // Float j of the reversed block is float 3 (7 - j / 3) + j % 3 of the mirror block (registers m0 m1 m2;
   // shuffle index 0-7: the first operand's lanes, 8-15: the second's).
   const i8 r0{13, 14, 15, 10, 11, 12, 7, 8}, r1a{9, 4, 5, 6, 1, 2, 3, 0}, r1b{0, 1, 2, 3, 4, 5, 6, 14}, r2{7, 8, 3, 4, 5, 0, 1, 2};
+  f8 acc[5][3];
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 3; ++j) acc[k][j] = ra.acc[k][j];
   for (int i = 0; i < steps; ++i) {
     if (next_left != nullptr) {
       __builtin_prefetch(next_left + 24 * i, 0, 1);
@@ -180,19 +185,17 @@ SHADELAB_INLINE void fold_chunk(const float* left, const float* mirror_end, int 
     const float* l = left + 24 * i;
     const float* m = mirror_end - 24 * (i + 1);
     const f8 m0 = load8(m), m1 = load8(m + 8), m2 = load8(m + 16);
-    const f8 q0 = __builtin_shuffle(m1, m2, r0);
-    const f8 q1 = __builtin_shuffle(__builtin_shuffle(m1, m2, r1a), m0, r1b);
-    const f8 q2 = __builtin_shuffle(m0, m1, r2);
-    const f8 l0 = load8(l), l1 = load8(l + 8), l2 = load8(l + 16);
-    float* e = even + 24 * i;
-    float* o = odd + 24 * i;
-    store8(e, l0 + q0);
-    store8(e + 8, l1 + q1);
-    store8(e + 16, l2 + q2);
-    store8(o, l0 - q0);
-    store8(o + 8, l1 - q1);
-    store8(o + 16, l2 - q2);
+    const f8 q[3] = {__builtin_shuffle(m1, m2, r0), __builtin_shuffle(__builtin_shuffle(m1, m2, r1a), m0, r1b),
+                     __builtin_shuffle(m0, m1, r2)};
+    for (int j = 0; j < 3; ++j) {
+      const f8 lj = load8(l + 8 * j);
+      const f8 even = lj + q[j], odd = lj - q[j];
+      for (int k = 0; k < 3; ++k) acc[k][j] += load8(g3[k] + 24 * i + 8 * j) * even;
+      for (int k = 3; k < 5; ++k) acc[k][j] += load8(g3[k] + 24 * i + 8 * j) * odd;
+    }
   }
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 3; ++j) ra.acc[k][j] = acc[k][j];
 }
 
 // One row y of all six faces: chunk by chunk over the left half, the weights expanded once, each face's
@@ -201,12 +204,10 @@ SHADELAB_INLINE void fold_chunk(const float* left, const float* mirror_end, int 
 // `next_row`: non-null when the next row (3 n floats further in each face) is this thread's too, so that the
 // prefetch may run ahead into it.
 SHADELAB_INLINE void cube_row_impl(const float* const faces[6], const float* w, const float* c, const float* sc, int n,
-                                   float* const chunk3[5], float* const middle3[5], float* fold, float out[6][15],
+                                   float* const chunk3[5], float* const middle3[5], float out[6][15],
                                    const float* next_row) {
   RowAccumulators ra[6] = {};
   const int folded = n / 2 / 8 * 8;  // texels of each half summed through the fold
-  float* even = fold;
-  float* odd = fold + 3 * cube_chunk;
   const int chunks = (folded + cube_chunk - 1) / cube_chunk;
   for (int x0 = 0; x0 < folded; x0 += cube_chunk) {
     const int count = std::min(cube_chunk, folded - x0);
@@ -223,10 +224,8 @@ SHADELAB_INLINE void cube_row_impl(const float* const faces[6], const float* w, 
         next = faces[q % 6] + 3 * n;
         next_x0 = q / 6 * cube_chunk;
       }
-      fold_chunk(faces[f] + 3 * x0, faces[f] + 3 * (n - x0), count / 8, even, odd, next == nullptr ? nullptr : next + 3 * next_x0,
-                 next == nullptr ? nullptr : next + 3 * (n - next_x0));
-      chunk_pass<0, 3>(even, chunk3, count / 8, ra[f], nullptr);
-      chunk_pass<3, 5>(odd, chunk3, count / 8, ra[f], nullptr);
+      fold_accumulate(faces[f] + 3 * x0, faces[f] + 3 * (n - x0), count / 8, chunk3, ra[f],
+                      next == nullptr ? nullptr : next + 3 * next_x0, next == nullptr ? nullptr : next + 3 * (n - next_x0));
     }
   }
   for (int x = folded; x < n - folded; ++x) {
@@ -239,13 +238,13 @@ SHADELAB_INLINE void cube_row_impl(const float* const faces[6], const float* w, 
 }
 
 SHADELAB_TARGET_AVX2 void cube_row_avx2(const float* const faces[6], const float* w, const float* c, const float* sc, int n,
-                                        float* const chunk3[5], float* const middle3[5], float* fold, float out[6][15],
+                                        float* const chunk3[5], float* const middle3[5], float out[6][15],
                                         const float* next_row) {
-  cube_row_impl(faces, w, c, sc, n, chunk3, middle3, fold, out, next_row);
+  cube_row_impl(faces, w, c, sc, n, chunk3, middle3, out, next_row);
 }
 void cube_row_base(const float* const faces[6], const float* w, const float* c, const float* sc, int n,
-                   float* const chunk3[5], float* const middle3[5], float* fold, float out[6][15], const float* next_row) {
-  cube_row_impl(faces, w, c, sc, n, chunk3, middle3, fold, out, next_row);
+                   float* const chunk3[5], float* const middle3[5], float out[6][15], const float* next_row) {
+  cube_row_impl(faces, w, c, sc, n, chunk3, middle3, out, next_row);
 }
 
 using RowSums5 = std::array<double, 15>;
@@ -337,7 +336,7 @@ const FaceWeights& face_weights(int size) {
 //   sum w b^2 = tc^2 S2, sum w c^2 = S2, sum w a^2 = S0 - (1 + tc^2) S2 (a^2 + b^2 + c^2 = 1),
 // with S_k = sum L g_k. The weights depend on (x, y) only, so they are formed once per row and serve all
 // six faces; each face's world moments are its signed permutation of the local ones. Each row is summed
-// through its mirror fold (fold_chunk): the left half's weights against L(x) +- L(n - 1 - x).
+// through its mirror fold (fold_accumulate): the left half's weights against L(x) +- L(n - 1 - x).
 Sh9 project_sh9(const CubeMap& cube) {
   const int n = cube.size;
   const auto nn = static_cast<std::size_t>(n);
@@ -347,17 +346,15 @@ Sh9 project_sh9(const CubeMap& cube) {
   // TBB splits the rows, so it is the same for any thread count.
   std::vector<std::array<Moments, 6>> rows(nn);
   tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& range) {
-    // Expanded weights: one chunk's and the row's middle texels' (indexed by x as in the row), then the
-    // folded chunk (cube_row_impl).
+    // Expanded weights: one chunk's and the row's middle texels' (indexed by x as in the row; cube_row_impl).
     const std::size_t chunk_stride = 3 * static_cast<std::size_t>(cube_chunk);
     const std::size_t tail_stride = 3 * nn;
-    std::vector<float> g(5 * (chunk_stride + tail_stride) + 2 * chunk_stride);
+    std::vector<float> g(5 * (chunk_stride + tail_stride));
     float* const chunk3[5] = {g.data(), g.data() + chunk_stride, g.data() + 2 * chunk_stride, g.data() + 3 * chunk_stride,
                               g.data() + 4 * chunk_stride};
     float* const tail_base = g.data() + 5 * chunk_stride;
     float* const tail3[5] = {tail_base, tail_base + tail_stride, tail_base + 2 * tail_stride, tail_base + 3 * tail_stride,
                              tail_base + 4 * tail_stride};
-    float* const fold = tail_base + 5 * tail_stride;
     for (int y = range.begin(); y != range.end(); ++y) {
       const auto yy = static_cast<std::size_t>(y);
       const float* w = fw.w.data() + yy * nn;
@@ -367,9 +364,9 @@ Sh9 project_sh9(const CubeMap& cube) {
       const float* next_row = y + 1 < range.end() ? cube.faces[0].data.data() + (yy + 1) * nn * 3 : nullptr;
       float sums[6][15];
       if (avx) {
-        cube_row_avx2(faces, w, c, fw.sc.data(), n, chunk3, tail3, fold, sums, next_row);
+        cube_row_avx2(faces, w, c, fw.sc.data(), n, chunk3, tail3, sums, next_row);
       } else {
-        cube_row_base(faces, w, c, fw.sc.data(), n, chunk3, tail3, fold, sums, next_row);
+        cube_row_base(faces, w, c, fw.sc.data(), n, chunk3, tail3, sums, next_row);
       }
       const double tc = (2.0 * y + 1.0) / n - 1.0;
       for (int f = 0; f < 6; ++f) {
