@@ -12,7 +12,13 @@
 
 #include "shadelab/core/constants.h"
 #include "shadelab/core/frame.h"
+#include "shadelab/envmap/lobe_sum.h"
+#include "shadelab/envmap/simd.h"
 #include "shadelab/kernels/kernels.h"
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 
 namespace shadelab {
 
@@ -178,6 +184,31 @@ namespace {
 // exact sums below the sampling's cost, whatever the input size.
 bool exact_level(int n, int samples) { return 3.0 * n * n <= static_cast<double>(samples); }
 
+// The lobe of prefilter_ggx_brute_force, D(h) max(R.l, 0), as lobe_sum reads it: a function of d = 1 - t,
+// t = R.l, up to the constant 1/pi. With h = normalize(R + l), (R.h)^2 = (1 + t)/2 = 1 - d/2, so D's
+// denominator (R.h)^2 (alpha^2 - 1) + 1 is alpha^2 + (d/2)(1 - alpha^2) (Walter et al. 2007 eq. 33):
+// K(d) = (1 - d) alpha^2 / (alpha^2 + (d/2)(1 - alpha^2))^2, in float. The hemisphere t >= 0 is the cap
+// (d <= 1), where K >= 0. PrefilterGgx.CoarseLevelsAreSummedExactlyAndHoldASmallBrightSource holds every
+// texel of the exact levels to the tests' own double brute force.
+struct GgxLobe {
+  static constexpr bool row_sums_in_double = true;  // a hemisphere of texels (lobe_sum.h)
+  float a2 = 1.0f;    // alpha^2
+  float half = 0.0f;  // (1 - alpha^2) / 2
+  explicit GgxLobe(double alpha) : a2(static_cast<float>(alpha * alpha)), half(static_cast<float>(0.5 * (1.0 - alpha * alpha))) {}
+  template <int K>
+  SHADELAB_INLINE simd::f8 weight(const simd::f8& d) const {
+    const simd::f8 den = a2 + half * d;
+    return (1.0f - d) * a2 / (den * den);
+  }
+};
+
+SHADELAB_TARGET_AVX2 void ggx_rows_avx2(const lobe_sum::LevelJob& job, const GgxLobe& lobe, int begin, int end) {
+  lobe_sum::convolve_rows_k<0>(job, lobe, begin, end);
+}
+void ggx_rows_base(const lobe_sum::LevelJob& job, const GgxLobe& lobe, int begin, int end) {
+  lobe_sum::convolve_rows_k<0>(job, lobe, begin, end);
+}
+
 }  // namespace
 
 GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOptions& o) {
@@ -202,12 +233,18 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
   }
 
   const GgxFilter filter(radiance, o.samples, o.lod_bias);
+  const bool avx = simd::cpu_has_avx2_fma();
+  lobe_sum::Input input;  // the input in lobe_sum's planar form, made for the first exact level
 
   GgxPrefilteredCube out;
   out.mapping = {o.mapping, levels};
   out.samples = o.samples;
+  // Work items: a row of a sampled level, a pair of rows of an exact one (lobe_sum::level_items).
   long long total_rows = 0;
-  for (int i = 1; i < levels; ++i) total_rows += 6LL * std::max(1, size >> i);
+  for (int i = 1; i < levels; ++i) {
+    const int n = std::max(1, size >> i);
+    total_rows += exact_level(n, o.samples) ? lobe_sum::level_items(n) : 6LL * n;
+  }
   long long rows_done = 0;
 
   out.levels.push_back(radiance);  // r_0 = 0: the delta lobe, the input itself
@@ -216,23 +253,32 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
   for (int i = 1; i < levels; ++i) {
     const int n = std::max(1, size >> i);
     const double r = out.mapping.roughness(i);
-    // Exact summation over a pyramid level where it costs about what the sampling does (header: Method).
+    // Exact summation over the input where it costs about what the sampling does (header: Method): the
+    // lobe sum of prefilter_ggx_brute_force over every input texel, 8 at a time in float with each row's
+    // sums added in double, output texels in groups of four mirror images (lobe_sum.h).
     const bool exact = exact_level(n, o.samples);
     const std::vector<GgxFilter::Sample> samples = exact ? std::vector<GgxFilter::Sample>{} : filter.make_samples(r);
     CubeMap level(n);
-    const auto texel = [&](int face, int x, int y) {
-      const Vec3 d = texel_direction(face, x, y, n);
-      return exact ? prefilter_ggx_brute_force(radiance, d, r) : filter.eval(d, samples);
-    };
-    const int rows = 6 * n;
+    if (exact && input.cube == nullptr) input = lobe_sum::make_input(radiance);
+    const lobe_sum::LevelJob job = lobe_sum::level_job(input, level, 0.0);
+    const GgxLobe lobe(r * r);
+    const int rows = exact ? lobe_sum::level_items(n) : 6 * n;
     const int chunk = std::max(1, rows / 20);
     for (int start = 0; start < rows; start += chunk) {
       const int end = std::min(rows, start + chunk);
       tbb::parallel_for(tbb::blocked_range<int>(start, end), [&](const tbb::blocked_range<int>& range) {
+        if (exact) {
+          if (avx) {
+            ggx_rows_avx2(job, lobe, range.begin(), range.end());
+          } else {
+            ggx_rows_base(job, lobe, range.begin(), range.end());
+          }
+          return;
+        }
         for (int row = range.begin(); row != range.end(); ++row) {
           const int face = row / n;
           const int y = row % n;
-          for (int x = 0; x < n; ++x) level.set(face, x, y, texel(face, x, y));
+          for (int x = 0; x < n; ++x) level.set(face, x, y, filter.eval(texel_direction(face, x, y, n), samples));
         }
       });
       rows_done += end - start;
