@@ -8,30 +8,6 @@
 
 namespace shadelab {
 
-CubeCoord cube_coord(const Vec3& r) {
-  const double ax = std::abs(r.x);
-  const double ay = std::abs(r.y);
-  const double az = std::abs(r.z);
-  CubeCoord c;
-  double sc = 0.0;
-  double tc = 0.0;
-  double ma = 0.0;
-  // OpenGL table 8.19; ties go to X, then Y (any choice is consistent on the shared edge).
-  if (ax >= ay && ax >= az) {
-    ma = ax;
-    if (r.x >= 0.0) { c.face = 0; sc = -r.z; tc = -r.y; } else { c.face = 1; sc = r.z; tc = -r.y; }
-  } else if (ay >= az) {
-    ma = ay;
-    if (r.y >= 0.0) { c.face = 2; sc = r.x; tc = r.z; } else { c.face = 3; sc = r.x; tc = -r.z; }
-  } else {
-    ma = az;
-    if (r.z >= 0.0) { c.face = 4; sc = r.x; tc = -r.y; } else { c.face = 5; sc = -r.x; tc = -r.y; }
-  }
-  c.s = 0.5 * (sc / ma + 1.0);
-  c.t = 0.5 * (tc / ma + 1.0);
-  return c;
-}
-
 Vec3 cube_direction(int face, double s, double t) {
   const double sc = 2.0 * s - 1.0;
   const double tc = 2.0 * t - 1.0;

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "shadelab/core/vec.h"
@@ -32,8 +33,32 @@ struct CubeCoord {
   double t = 0.0;  // [0, 1] down the face
 };
 
-// Direction (not necessarily unit) -> face and coordinates.
-CubeCoord cube_coord(const Vec3& dir);
+// Direction (not necessarily unit) -> face and coordinates. Inline: the GGX prefilter calls it for every
+// sample of every texel.
+inline CubeCoord cube_coord(const Vec3& r) {
+  const double ax = std::abs(r.x);
+  const double ay = std::abs(r.y);
+  const double az = std::abs(r.z);
+  CubeCoord c;
+  double sc = 0.0;
+  double tc = 0.0;
+  double ma = 0.0;
+  // OpenGL table 8.19; ties go to X, then Y (any choice is consistent on the shared edge).
+  if (ax >= ay && ax >= az) {
+    ma = ax;
+    if (r.x >= 0.0) { c.face = 0; sc = -r.z; tc = -r.y; } else { c.face = 1; sc = r.z; tc = -r.y; }
+  } else if (ay >= az) {
+    ma = ay;
+    if (r.y >= 0.0) { c.face = 2; sc = r.x; tc = r.z; } else { c.face = 3; sc = r.x; tc = -r.z; }
+  } else {
+    ma = az;
+    if (r.z >= 0.0) { c.face = 4; sc = r.x; tc = -r.y; } else { c.face = 5; sc = -r.x; tc = -r.y; }
+  }
+  c.s = 0.5 * (sc / ma + 1.0);
+  c.t = 0.5 * (tc / ma + 1.0);
+  return c;
+}
+
 // Face and coordinates -> unit direction.
 Vec3 cube_direction(int face, double s, double t);
 inline Vec3 texel_direction(int face, int x, int y, int size) {

@@ -178,6 +178,90 @@ Rgb GgxFilter::eval(const Vec3& r, const std::vector<Sample>& samples) const {
 
 namespace {
 
+// A bilinear lookup's taps at a face: texels x0, x0 + 1 (weights 1 - ax, ax) by y0, y0 + 1, x and y one
+// texel outside the face at most (texel_across_edges), as sample_cube_seamless finds them.
+struct Taps {
+  int face = 0, x0 = 0, y0 = 0;
+  double ax = 0.0, ay = 0.0;
+};
+inline Taps taps_at(int n, const Vec3& dir) {
+  const CubeCoord c = cube_coord(dir);
+  const double fx = c.s * n - 0.5;  // texel centres at integer fx
+  const double fy = c.t * n - 0.5;
+  Taps t;
+  t.face = c.face;
+  t.x0 = std::clamp(static_cast<int>(std::floor(fx)), -1, n - 1);
+  t.y0 = std::clamp(static_cast<int>(std::floor(fy)), -1, n - 1);
+  t.ax = std::clamp(fx - t.x0, 0.0, 1.0);
+  t.ay = std::clamp(fy - t.y0, 0.0, 1.0);
+  return t;
+}
+// The taps read on `face` with x and / or y mirrored (x -> n - 1 - x): the same weights at the mirror
+// texels, combined in the same order as sample_cube_seamless (identity: its value bit for bit).
+inline Rgb read_taps(const CubeMap& cube, const Taps& t, int face, bool flip_x, bool flip_y) {
+  const int n = cube.size;
+  if (t.x0 >= 0 && t.x0 + 1 < n && t.y0 >= 0 && t.y0 + 1 < n) {
+    // All four taps inside the face (the common case): read them where they lie, the same floats as
+    // texel_across_edges gives, combined in the same order.
+    const float* data = cube.faces[static_cast<std::size_t>(face)].data.data();
+    const int xa = flip_x ? n - 1 - t.x0 : t.x0, xb = flip_x ? xa - 1 : xa + 1;
+    const int ya = flip_y ? n - 1 - t.y0 : t.y0, yb = flip_y ? ya - 1 : ya + 1;
+    const auto at = [&](int x, int y) {
+      const float* p = data + 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x));
+      return Rgb{p[0], p[1], p[2]};
+    };
+    return (at(xa, ya) * (1 - t.ax) + at(xb, ya) * t.ax) * (1 - t.ay) + (at(xa, yb) * (1 - t.ax) + at(xb, yb) * t.ax) * t.ay;
+  }
+  const auto tx = [&](int x) { return flip_x ? n - 1 - x : x; };
+  const auto ty = [&](int y) { return flip_y ? n - 1 - y : y; };
+  return (texel_across_edges(cube, face, tx(t.x0), ty(t.y0)) * (1 - t.ax) + texel_across_edges(cube, face, tx(t.x0 + 1), ty(t.y0)) * t.ax) *
+             (1 - t.ay) +
+         (texel_across_edges(cube, face, tx(t.x0), ty(t.y0 + 1)) * (1 - t.ax) + texel_across_edges(cube, face, tx(t.x0 + 1), ty(t.y0 + 1)) * t.ax) *
+             t.ay;
+}
+
+}  // namespace
+
+void GgxFilter::eval_mirrored(const Vec3& r, const std::vector<Sample>& samples, const int (&axes)[2], Rgb (&out)[4]) const {
+  // Each input face's image under the four reflections (lobe_sum::reflect: the face and the flips).
+  lobe_sum::Partner image[4][6];
+  for (int g = 0; g < 6; ++g)
+    for (int o = 0; o < 4; ++o) {
+      lobe_sum::Partner p;
+      p.face = g;
+      if (o & 1) p = lobe_sum::reflect(axes[0], p);
+      if (o & 2) p = lobe_sum::reflect(axes[1], p);
+      image[o][g] = p;
+    }
+  const Frame frame = Frame::from_normal(r);
+  const int max_lod = static_cast<int>(pyramid_.size()) - 1;
+  Rgb sum[4];
+  double weight = 0.0;
+  for (const Sample& s : samples) {
+    const Vec3 d = frame.to_world(s.l);
+    const int l0 = static_cast<int>(s.lod);
+    const double f = s.lod - l0;
+    const bool second = f > 0.0 && l0 < max_lod;
+    const CubeMap& c0 = pyramid_[static_cast<std::size_t>(l0)];
+    const Taps t0 = taps_at(c0.size, d);
+    Taps t1;
+    if (second) t1 = taps_at(pyramid_[static_cast<std::size_t>(l0 + 1)].size, d);
+    for (int o = 0; o < 4; ++o) {
+      const lobe_sum::Partner& p0 = image[o][t0.face];
+      Rgb v = read_taps(c0, t0, p0.face, p0.flip_x, p0.flip_y);
+      if (second) {
+        const lobe_sum::Partner& p1 = image[o][t1.face];
+        v = v * (1.0 - f) + read_taps(pyramid_[static_cast<std::size_t>(l0 + 1)], t1, p1.face, p1.flip_x, p1.flip_y) * f;
+      }
+      sum[o] += v * s.weight;
+    }
+    weight += s.weight;
+  }
+  for (int o = 0; o < 4; ++o) out[o] = weight > 0.0 ? sum[o] / weight : Rgb{};
+}
+
+namespace {
+
 // Whether the level of face n is the exact sum over the input (header: "Coarse levels"). Cost: 6 n^2 output
 // texels x 6 N^2 input texels, summed over the exact levels (n, n/2, ...) at most 36 n^2 N^2 4/3; sampling
 // the whole chain costs about 8 taps x samples x 6 (N/2)^2 4/3 = 16 samples N^2: 3 n^2 <= samples keeps the
@@ -239,12 +323,9 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
   GgxPrefilteredCube out;
   out.mapping = {o.mapping, levels};
   out.samples = o.samples;
-  // Work items: a row of a sampled level, a pair of rows of an exact one (lobe_sum::level_items).
+  // Work items: pairs of rows of a face (lobe_sum::level_items), exact or sampled.
   long long total_rows = 0;
-  for (int i = 1; i < levels; ++i) {
-    const int n = std::max(1, size >> i);
-    total_rows += exact_level(n, o.samples) ? lobe_sum::level_items(n) : 6LL * n;
-  }
+  for (int i = 1; i < levels; ++i) total_rows += lobe_sum::level_items(std::max(1, size >> i));
   long long rows_done = 0;
 
   out.levels.push_back(radiance);  // r_0 = 0: the delta lobe, the input itself
@@ -262,7 +343,7 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
     if (exact && input.cube == nullptr) input = lobe_sum::make_input(radiance);
     const lobe_sum::LevelJob job = lobe_sum::level_job(input, level, 0.0);
     const GgxLobe lobe(r * r);
-    const int rows = exact ? lobe_sum::level_items(n) : 6 * n;
+    const int rows = lobe_sum::level_items(n);
     const int chunk = std::max(1, rows / 20);
     for (int start = 0; start < rows; start += chunk) {
       const int end = std::min(rows, start + chunk);
@@ -275,10 +356,25 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
           }
           return;
         }
-        for (int row = range.begin(); row != range.end(); ++row) {
-          const int face = row / n;
-          const int y = row % n;
-          for (int x = 0; x < n; ++x) level.set(face, x, y, filter.eval(texel_direction(face, x, y, n), samples));
+        // Work item: face item / h, rows y and n - 1 - y (h = (n + 1) / 2), texels in groups of four mirror
+        // images (eval_mirrored; the 1 x 1 level's single texel alone).
+        const int h = (n + 1) / 2;
+        for (int item = range.begin(); item != range.end(); ++item) {
+          const int face = item / h;
+          const int y = item % h;
+          if (n == 1) {
+            level.set(face, 0, 0, filter.eval(texel_direction(face, 0, 0, 1), samples));
+            continue;
+          }
+          const int axes[2] = {lobe_sum::face_axis_of_local(face, 0), lobe_sum::face_axis_of_local(face, 1)};
+          for (int x = 0; x < h; ++x) {
+            Rgb v[4];
+            filter.eval_mirrored(texel_direction(face, x, y, n), samples, axes, v);
+            level.set(face, x, y, v[0]);
+            level.set(face, n - 1 - x, y, v[1]);
+            level.set(face, x, n - 1 - y, v[2]);
+            level.set(face, n - 1 - x, n - 1 - y, v[3]);
+          }
         }
       });
       rows_done += end - start;

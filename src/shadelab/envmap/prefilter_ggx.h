@@ -101,6 +101,12 @@ class GgxFilter {
   GgxFilter(const CubeMap& radiance, int samples, double lod_bias);
   std::vector<Sample> make_samples(double roughness) const;
   Rgb eval(const Vec3& r, const std::vector<Sample>& samples) const;
+  // out[0] = eval(r, samples), bit for bit, and out[1..3] the same sample set reflected with r: out[o] is
+  // the estimate at r's image under the reflections of world axis axes[0] (o & 1) and axes[1] (o & 2),
+  // its samples the images of r's (a mirrored frame), each read at the mirror image of r's tap texels
+  // (the cube's texel grid is symmetric under every axis reflection). The directions, cube coordinates,
+  // lods and tap weights are computed once for the four. axes[0] != axes[1].
+  void eval_mirrored(const Vec3& r, const std::vector<Sample>& samples, const int (&axes)[2], Rgb (&out)[4]) const;
   const std::vector<CubeMap>& pyramid() const { return pyramid_; }
 
  private:

@@ -14,6 +14,8 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "shadelab/core/constants.h"
 #include "shadelab/envmap/latlong.h"
@@ -217,6 +219,54 @@ TEST(PrefilterGgx, CoarseLevelsAreSummedExactlyAndHoldASmallBrightSource) {
   }
   EXPECT_GT(worst_sampled_face4, 0.01);
   EXPECT_GT(worst_sampled_face4, 1000.0 * worst_exact_face4);
+}
+
+TEST(PrefilterGgx, MirroredEstimatesAreTheEstimatesOfTheMirroredEnvironment) {
+  // prefilter_ggx samples four mirror-image texels at once (GgxFilter::eval_mirrored): out[o] reads r's
+  // sample set at the mirror images of r's taps. So out[o] on an environment must be eval(r) on that
+  // environment's mirror image env_o(d) = env(M_o d), M_o the reflections of world axes axes[0] (o & 1) and
+  // axes[1] (o & 2). env_o is built here from directions (texel_direction and cube_coord), not from the
+  // library's face tables; an asymmetric environment with a bright texel on each face, a level whose
+  // samples read two pyramid levels and cross face edges, texels of every face and both sides of each.
+  const int n = 32;
+  CubeMap env = test_environment(n);
+  for (int f = 0; f < 6; ++f) env.set(f, 2 + 5 * f, 30 - 4 * f, Rgb{400.0, 30.0, 2.0});
+  const int axis_of[6][2] = {{2, 1}, {2, 1}, {0, 2}, {0, 2}, {0, 1}, {0, 1}};  // world axes of each face's s and t
+  auto mirrored = [&](int o, const int (&axes)[2]) {
+    CubeMap m(n);
+    for (int f = 0; f < 6; ++f)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          Vec3 d = texel_direction(f, x, y, n);
+          double* c[3] = {&d.x, &d.y, &d.z};
+          if (o & 1) *c[axes[0]] = -*c[axes[0]];
+          if (o & 2) *c[axes[1]] = -*c[axes[1]];
+          const CubeCoord q = cube_coord(d);
+          m.set(f, x, y, env.texel(q.face, std::min(n - 1, static_cast<int>(q.s * n)), std::min(n - 1, static_cast<int>(q.t * n))));
+        }
+    return m;
+  };
+  const GgxFilter filter(env, 256, 0.0);
+  const auto samples = filter.make_samples(0.35);
+  double worst = 0.0;
+  for (int f = 0; f < 6; ++f) {
+    const int axes[2] = {axis_of[f][0], axis_of[f][1]};
+    std::vector<GgxFilter> images;
+    for (int o = 1; o < 4; ++o) images.emplace_back(mirrored(o, axes), 256, 0.0);
+    for (const auto& [x, y] : {std::pair{0, 0}, std::pair{3, 9}, std::pair{7, 1}}) {
+      const Vec3 r = texel_direction(f, x, y, 16);
+      Rgb out[4];
+      filter.eval_mirrored(r, samples, axes, out);
+      const Rgb base = filter.eval(r, samples);
+      EXPECT_EQ(std::memcmp(&out[0], &base, sizeof(Rgb)), 0) << "face " << f;  // out[0] is eval, bit for bit
+      for (int o = 1; o < 4; ++o) {
+        const Rgb want = images[static_cast<std::size_t>(o - 1)].eval(r, samples);
+        worst = std::max(worst, rel(out[o], want));
+        EXPECT_LE(rel(out[o], want), 1e-6) << "face " << f << " texel (" << x << ", " << y << ") image " << o;
+      }
+    }
+  }
+  std::printf("mirrored estimates against the mirrored environment's: max relative difference %.3g\n", worst);
 }
 
 TEST(PrefilterGgx, BrightTexelSpreadsSymmetricallyAcrossAnEdge) {

@@ -142,7 +142,6 @@ constexpr int prefetch_ahead = 6;  // (face, chunk) items ahead, into L2: 6-12 m
 // float lane by lane (the same products as texel by texel) and spread to the interleaved layout by lane
 // shuffles.
 SHADELAB_INLINE void expand_weights(const float* w, const float* c, const float* sc, int count, float* const g3[5]) {
-  const i8 m0{0, 0, 0, 1, 1, 1, 2, 2}, m1{2, 3, 3, 3, 4, 4, 4, 5}, m2{5, 5, 6, 6, 6, 7, 7, 7};
   for (int i = 0; i < count; i += 8) {
     const f8 wv = load8(w + i), cv = load8(c + i), sv = load8(sc + i);
     const f8 g1 = wv * cv;
@@ -150,9 +149,10 @@ SHADELAB_INLINE void expand_weights(const float* w, const float* c, const float*
     const f8 v[5] = {wv, g1, g2, g1 * sv, g2 * sv};
     for (int k = 0; k < 5; ++k) {
       float* out = g3[k] + 3 * i;
-      store8(out, __builtin_shuffle(v[k], m0));
-      store8(out + 8, __builtin_shuffle(v[k], m1));
-      store8(out + 16, __builtin_shuffle(v[k], m2));
+      // __builtin_shufflevector (GCC >= 12 and clang): constant lane indices, 0-7 the first operand's.
+      store8(out, __builtin_shufflevector(v[k], v[k], 0, 0, 0, 1, 1, 1, 2, 2));
+      store8(out + 8, __builtin_shufflevector(v[k], v[k], 2, 3, 3, 3, 4, 4, 4, 5));
+      store8(out + 16, __builtin_shufflevector(v[k], v[k], 5, 5, 6, 6, 6, 7, 7, 7));
     }
   }
 }
@@ -171,7 +171,6 @@ SHADELAB_INLINE void fold_accumulate(const float* left, const float* mirror_end,
                                      RowAccumulators& ra, const float* next_left, const float* next_mirror_end) {
   // Float j of the reversed block is float 3 (7 - j / 3) + j % 3 of the mirror block (registers m0 m1 m2;
   // shuffle index 0-7: the first operand's lanes, 8-15: the second's).
-  const i8 r0{13, 14, 15, 10, 11, 12, 7, 8}, r1a{9, 4, 5, 6, 1, 2, 3, 0}, r1b{0, 1, 2, 3, 4, 5, 6, 14}, r2{7, 8, 3, 4, 5, 0, 1, 2};
   f8 acc[5][3];
   for (int k = 0; k < 5; ++k)
     for (int j = 0; j < 3; ++j) acc[k][j] = ra.acc[k][j];
@@ -185,8 +184,9 @@ SHADELAB_INLINE void fold_accumulate(const float* left, const float* mirror_end,
     const float* l = left + 24 * i;
     const float* m = mirror_end - 24 * (i + 1);
     const f8 m0 = load8(m), m1 = load8(m + 8), m2 = load8(m + 16);
-    const f8 q[3] = {__builtin_shuffle(m1, m2, r0), __builtin_shuffle(__builtin_shuffle(m1, m2, r1a), m0, r1b),
-                     __builtin_shuffle(m0, m1, r2)};
+    const f8 q[3] = {__builtin_shufflevector(m1, m2, 13, 14, 15, 10, 11, 12, 7, 8),
+                     __builtin_shufflevector(__builtin_shufflevector(m1, m2, 9, 4, 5, 6, 1, 2, 3, 0), m0, 0, 1, 2, 3, 4, 5, 6, 14),
+                     __builtin_shufflevector(m0, m1, 7, 8, 3, 4, 5, 0, 1, 2)};
     for (int j = 0; j < 3; ++j) {
       const f8 lj = load8(l + 8 * j);
       const f8 even = lj + q[j], odd = lj - q[j];
