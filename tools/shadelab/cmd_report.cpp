@@ -257,10 +257,10 @@ void run_report(const ReportOptions& o) {
     body += fmt::format(
         "<h2>Image-based lighting: the shortcuts against the path tracer</h2>\n<p>A ggx sphere lit by this scene's "
         "environment alone, per roughness and N.V (<a href=\"ibl_error/index.html\">the whole map</a>). Split sum "
-        "read along R: mean |error| {:.2f}%, max {:.2f}%, at N.V &lt; 0.3 {:.2f}%; along the dominant direction: mean "
+        "read along R: mean |error| {:.2f}%, max {:.2f}%, at N.V &lt; 0.3 {:.2f}%; each part read at its lobe's moments: mean "
         "{:.2f}%, max {:.2f}%, at N.V &lt; 0.3 {:.2f}%; SH9 irradiance on a white Lambert sphere: mean {:.2f}%, max "
         "{:.2f}%.</p>\n<div class=row><figure><img src=\"ibl_error/split_sum_error.png\"><figcaption>split sum |error|"
-        "</figcaption></figure><figure><img src=\"ibl_error/corrected_error.png\"><figcaption>dominant direction"
+        "</figcaption></figure><figure><img src=\"ibl_error/corrected_error.png\"><figcaption>read per lobe"
         "</figcaption></figure></div>\n",
         pct(map.split_sum_summary.mean_abs), pct(map.split_sum_summary.max_abs), pct(map.split_sum_summary.grazing_mean_abs),
         pct(map.corrected_summary.mean_abs), pct(map.corrected_summary.max_abs), pct(map.corrected_summary.grazing_mean_abs),
@@ -296,7 +296,7 @@ void run_report(const ReportOptions& o) {
     }
     for (const auto& line : wrap_lines) fmt::print("wrapped diffuse: {}\n", line);
     if (o.ibl_error) {
-      fmt::print("ibl error: split sum mean |error| {:.2f}%, along the dominant direction {:.2f}%; SH9 {:.2f}% ({})\n",
+      fmt::print("ibl error: split sum mean |error| {:.2f}%, read per lobe {:.2f}%; SH9 {:.2f}% ({})\n",
                  100.0 * ibl_json["split_sum"]["mean_abs_error"].get<double>(),
                  100.0 * ibl_json["corrected"]["mean_abs_error"].get<double>(),
                  100.0 * ibl_json["sh"]["mean_abs_error"].get<double>(), ibl_json["page"].get<std::string>());

@@ -101,9 +101,16 @@ std::string html_page(const IblErrorMap& map, const std::string& input, double s
   summary(map.split_sum_summary);
   h << fmt::format("<p><img src=\"split_sum_error.png\" alt=\"|error| per cell, white at {:.3g}\"> |error| per cell "
                    "(rows: roughness, top the smoothest; columns: N.V from 0), white at {:.3g}.</p>\n", scale, scale);
-  h << "<h2>Split sum read along the dominant direction normalize(mix(R, n, &alpha;<sup>2</sup>))</h2>\n"
-       "<p>The same chain and table (the same storage), looked up toward the normal as the lobe leans at oblique "
-       "view (kernels/game_ambient.sl game_split_sum_direction).</p>\n";
+  if (map.correction == GameSplitSumDirection::lobes) {
+    h << "<h2>Split sum read per part at its lobe's first moments</h2>\n"
+         "<p>The same chain and table (the same storage), read twice: f0 A along the mean direction of the A lobe "
+         "and at the chain roughness of the same spread, f90 B likewise for the B (Fresnel) lobe "
+         "(envmap/split_sum_lobes.h, kernels/game_ambient.sl game_split_sum_lobe_direction).</p>\n";
+  } else {
+    h << "<h2>Split sum read along the dominant direction normalize(mix(R, n, &alpha;<sup>2</sup>))</h2>\n"
+         "<p>The same chain and table (the same storage), looked up toward the normal as the lobe leans at oblique "
+         "view (kernels/game_ambient.sl game_split_sum_direction).</p>\n";
+  }
   table(map.corrected, "roughness");
   summary(map.corrected_summary);
   h << fmt::format("<p>At N.V &lt; 0.3 the mean |error| falls by {:.1f}% of the uncorrected split sum's.</p>\n",
@@ -140,7 +147,7 @@ nlohmann::json write_ibl_error_files(const IblErrorMap& map, const IblErrorHeade
       {"input", h.input}, {"model", map.model}, {"params", pj}, {"nv_bins", h.nv_bins}, {"size", h.size}, {"spp", h.spp},
       {"seed", h.seed}, {"specular_size", h.specular_size}, {"error", "(shortcut - reference) / reference of the mean luminance of a bin's pixels"},
       {"split_sum", {{"rows", rows}, {"summary", summary_json(map.split_sum_summary)}, {"heat_scale", scale}}},
-      {"corrected", {{"direction", "dominant: normalize(mix(R, n, alpha^2)), alpha = roughness^2"},
+      {"corrected", {{"direction", split_sum_correction_text(map.correction)},
                      {"rows", corrected_rows}, {"summary", summary_json(map.corrected_summary)},
                      {"grazing_reduction", map.grazing_reduction}}},
       {"sh", {{"cells", cells_json(map.sh)}, {"summary", summary_json(map.sh_summary)}}},

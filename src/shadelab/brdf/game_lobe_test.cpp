@@ -91,6 +91,35 @@ TEST(GameKernels, SplitSumDirectionLeansFromTheMirrorToTheNormal) {
   }
 }
 
+TEST(GameKernels, TheLobeDirectionTurnsTheNormalTowardRByTheAngle) {
+  const Vec3 n = normalize(Vec3{0.3, -0.2, 0.9});
+  for (const double nv : {0.05, 0.3, 0.7}) {
+    // A view direction at N.V = nv, its mirror direction R.
+    const Vec3 t = normalize(cross(n, Vec3{1.0, 0.0, 0.0}));
+    const Vec3 wo = n * nv + t * std::sqrt(1.0 - nv * nv);
+    const Vec3 r = kernel::game_reflect(wo, n);
+    const double theta_r = std::acos(nv);
+    for (const double angle : {-0.1, 0.0, 0.4, theta_r, 1.5}) {
+      const Vec3 d = kernel::game_split_sum_lobe_direction(n, r, angle);
+      EXPECT_NEAR(length(d), 1.0, 1e-12);
+      EXPECT_NEAR(dot(cross(r, n), d), 0.0, 1e-12);  // in the plane of R and n
+      // The angle from n, signed positive on R's side (written from the Rodrigues rotation about n x R).
+      const Vec3 axis = normalize(cross(n, r));
+      const double signed_angle = std::atan2(dot(cross(n, d), axis), dot(n, d));
+      EXPECT_NEAR(signed_angle, angle, 1e-12) << "nv " << nv;
+    }
+    EXPECT_NEAR(length(Vec3(kernel::game_split_sum_lobe_direction(n, r, theta_r)) - r), 0.0, 1e-12);
+  }
+  // R along n (normal view): n whatever the angle.
+  EXPECT_NEAR(length(Vec3(kernel::game_split_sum_lobe_direction(n, n, 0.7)) - n), 0.0, 1e-15);
+  // The two-read split sum: f0 A L_A + f90 B L_B per channel.
+  const Rgb s = kernel::game_split_sum_specular_lobes(Rgb{2.0, 4.0, 8.0}, Rgb{1.0, 3.0, 5.0}, Rgb{0.04, 0.5, 1.0},
+                                                      Rgb{1.0, 1.0, 0.5}, 0.7, 0.2);
+  EXPECT_NEAR(s.r, 2.0 * 0.04 * 0.7 + 1.0 * 1.0 * 0.2, 1e-15);
+  EXPECT_NEAR(s.g, 4.0 * 0.5 * 0.7 + 3.0 * 1.0 * 0.2, 1e-15);
+  EXPECT_NEAR(s.b, 8.0 * 1.0 * 0.7 + 5.0 * 0.5 * 0.2, 1e-15);
+}
+
 TEST(GameKernels, PointLightAndGameColour) {
   const Rgb e = kernel::point_light_irradiance(Rgb{4.0, 8.0, 2.0}, 4.0);  // I / d^2
   EXPECT_DOUBLE_EQ(e.r, 1.0);

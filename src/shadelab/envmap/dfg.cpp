@@ -112,6 +112,70 @@ DfgValue dfg_quadrature(double mu, double alpha, double tolerance) {
   return value;
 }
 
+DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol) {
+  const Integrand f = make_integrand(mu, alpha);
+  const double sin_v = f.v.x;
+  // The same variables and horizon bound as dfg_quadrature: (phi, u) over [0, pi] (every integrand below is
+  // even in phi: l.x and l.z are, l.y is odd and its integral vanishes), u = ln(1 + tan^2(theta_h) / alpha^2).
+  const auto u_max = [&](double phi) {
+    const double theta = 0.5 * (std::atan2(sin_v * std::cos(phi), mu) + 0.5 * pi);
+    const double t = std::tan(theta) / alpha;
+    return std::log1p(t * t);
+  };
+  QuadratureOptions options;
+  options.rel_tol = rel_tol;
+  options.abs_tol = 1e-14;
+  options.initial_intervals = 4;
+  options.max_subdivisions = 4000;
+  QuadratureOptions inner = options;
+  inner.initial_intervals = 1;
+  // The weight of (a, b) at (phi, u) in the measure dl, and l itself.
+  const auto at = [&](double phi, double u, double& a, double& b, Vec3& l) {
+    const Vec3 h = f.half_vector_tan(alpha * std::sqrt(std::expm1(u)), phi);
+    f.eval(h, a, b);
+    const double w = std::exp(-u) * inv_pi;
+    a *= w;
+    b *= w;
+    l = 2.0 * dot(f.v, h) * h - f.v;
+  };
+  const VectorQuadratureResult first = integrate_2d_vector(
+      [&](double phi, double u, std::span<double> out) {
+        double a = 0.0, b = 0.0;
+        Vec3 l;
+        at(phi, u, a, b, l);
+        out[0] = a;
+        out[1] = b;
+        out[2] = a * l.x;
+        out[3] = a * l.z;
+        out[4] = b * l.x;
+        out[5] = b * l.z;
+      },
+      6, 0.0, pi, [](double) { return 0.0; }, u_max, options, inner);
+  DfgLobeMoments m;
+  Vec3 d[2];
+  for (int k = 0; k < 2; ++k) {
+    const double w = first.value[static_cast<std::size_t>(k)];
+    m.weight[k] = w;
+    const double mx = w > 0.0 ? first.value[static_cast<std::size_t>(2 + 2 * k)] / w : 0.0;
+    const double mz = w > 0.0 ? first.value[static_cast<std::size_t>(3 + 2 * k)] / w : 1.0;
+    m.angle[k] = std::atan2(-mx, mz);  // R lies at -x
+    d[k] = normalize(Vec3{mx, 0.0, mz});
+  }
+  const VectorQuadratureResult second = integrate_2d_vector(
+      [&](double phi, double u, std::span<double> out) {
+        double a = 0.0, b = 0.0;
+        Vec3 l;
+        at(phi, u, a, b, l);
+        const Vec3 ea = l - d[0], eb = l - d[1];
+        out[0] = a * 0.5 * dot(ea, ea);
+        out[1] = b * 0.5 * dot(eb, eb);
+      },
+      2, 0.0, pi, [](double) { return 0.0; }, u_max, options, inner);
+  for (int k = 0; k < 2; ++k)
+    m.spread[k] = m.weight[k] > 0.0 ? second.value[static_cast<std::size_t>(k)] / m.weight[k] : 0.0;
+  return m;
+}
+
 DfgValue dfg_sampled(double mu, double alpha, int samples) {
   const Integrand f = make_integrand(mu, alpha);
   double a_sum = 0.0;
@@ -172,25 +236,25 @@ DfgTable bake_dfg(const DfgOptions& options) {
   return table;
 }
 
+TexelLerp texel_lerp(double x, int n) {
+  // Texel i's centre is at (i + 0.5) / n: the continuous texel coordinate is x n - 0.5, clamped to the edges.
+  const double p = std::clamp((std::isfinite(x) ? x : 0.0) * n - 0.5, 0.0, static_cast<double>(n - 1));
+  TexelLerp out;
+  out.i0 = std::min(static_cast<int>(p), n - 1);
+  out.i1 = std::min(out.i0 + 1, n - 1);
+  out.t = p - out.i0;
+  return out;
+}
+
 DfgAb dfg_lookup(const DfgTable& table, double mu, double roughness) {
   const int n = table.size;
   if (n < 1) return {};
-  // Texel i's centre is at (i + 0.5) / n: the continuous texel coordinate is x n - 0.5, clamped to the edges.
-  const auto axis = [n](double x, int& i0, int& i1, double& t) {
-    const double p = std::clamp((std::isfinite(x) ? x : 0.0) * n - 0.5, 0.0, static_cast<double>(n - 1));
-    i0 = std::min(static_cast<int>(p), n - 1);
-    i1 = std::min(i0 + 1, n - 1);
-    t = p - i0;
-  };
-  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
-  double tx = 0.0, ty = 0.0;
-  axis(mu, i0, i1, tx);
-  axis(roughness, j0, j1, ty);
+  const TexelLerp x = texel_lerp(mu, n), y = texel_lerp(roughness, n);
   DfgAb out;
   const auto lerp2 = [&](int c) {
-    const double lo = table.at(i0, j0, c) * (1.0 - tx) + table.at(i1, j0, c) * tx;
-    const double hi = table.at(i0, j1, c) * (1.0 - tx) + table.at(i1, j1, c) * tx;
-    return lo * (1.0 - ty) + hi * ty;
+    const double lo = table.at(x.i0, y.i0, c) * (1.0 - x.t) + table.at(x.i1, y.i0, c) * x.t;
+    const double hi = table.at(x.i0, y.i1, c) * (1.0 - x.t) + table.at(x.i1, y.i1, c) * x.t;
+    return lo * (1.0 - y.t) + hi * y.t;
   };
   out.a = lerp2(0);
   out.b = lerp2(1);

@@ -62,8 +62,32 @@ DfgValue dfg_quadrature(double mu, double alpha, double tolerance = 1e-6);
 // The same by `samples` Hammersley points importance-sampled from D cos(theta_h).
 DfgValue dfg_sampled(double mu, double alpha, int samples);
 
+// The first moments of the A and B lobes, the weights (1 - Fc) D G2 / (4 N.V) and Fc D G2 / (4 N.V) over l in
+// the upper hemisphere (the integrands of A and B above), in the local frame n = +Z, v = (sin theta_v, 0, mu),
+// R = (-sin theta_v, 0, mu): for part k (0 = A, 1 = B) its integral (= dfg_quadrature's a, b), its mean
+// direction m_k = integral w_k l dl / integral w_k dl as the angle from n toward R (radians, in the plane of
+// n and v; negative: past n, away from R), and its spread 1 - |m_k| = integral w_k (1 - l.m_k/|m_k|) dl /
+// integral w_k dl (taken in a second pass, with 1 - l.d = |l - d|^2 / 2, so that it keeps its relative
+// precision for the thinnest lobes). Used by the split sum's lobe-matched lookup (split_sum_lobes.h).
+// rel_tol: relative tolerance of every integral. mu in (0, 1], alpha > 0.
+struct DfgLobeMoments {
+  double weight[2] = {0.0, 0.0};
+  double angle[2] = {0.0, 0.0};
+  double spread[2] = {0.0, 0.0};
+};
+DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol = 1e-7);
+
 // Throws std::invalid_argument naming the option when size or samples is out of range or tolerance <= 0.
 DfgTable bake_dfg(const DfgOptions& options);
+
+// A coordinate x in [0, 1] of a table of n texel centres (i + 0.5) / n, as a GPU's bilinear sampler reads it
+// (clamped to the edge texels; NaN reads texel 0): the two texels around it and the weight of the second.
+struct TexelLerp {
+  int i0 = 0;
+  int i1 = 0;
+  double t = 0.0;
+};
+TexelLerp texel_lerp(double x, int n);
 
 // A and B at (N.V = mu, perceptual roughness r) read from the table as a GPU's bilinear sampler reads the
 // texture at coordinates (mu, r): between the four nearest texel centres, clamped to the edge texels (so mu

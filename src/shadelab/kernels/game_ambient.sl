@@ -53,6 +53,16 @@ inline vec3 game_split_sum_direction(vec3 n, vec3 r, real alpha) {
   return normalize(r * (1.0 - t) + n * t);
 }
 
+// The split sum's lobe-matched lookup direction (envmap/split_sum_lobes.h): the normal n rotated toward the
+// mirror direction r by `angle` radians in the plane of n and r (a negative angle turns past n, away from r);
+// r parallel to n (normal view) gives n.
+inline vec3 game_split_sum_lobe_direction(vec3 n, vec3 r, real angle) {
+  vec3 t = r - n * dot(r, n);
+  real len = length(t);
+  if (len < 1.0e-12) return n;
+  return n * cos(angle) + t * (sin(angle) / len);
+}
+
 // The diffuse ambient: a surface of diffuse albedo rho_d under an environment of irradiance E shows
 // rho_d E/pi (game units: e_over_pi is E/pi, the exit radiance of a white Lambert surface).
 inline rgb game_diffuse_ambient(rgb diffuse_albedo, rgb e_over_pi) {
@@ -68,5 +78,11 @@ inline rgb game_specular_ambient(rgb rho_s, rgb prefiltered) {
 // f0 A + f90 B (A, B from the DFG table at N.V and the roughness).
 inline rgb game_split_sum_specular(rgb prefiltered, rgb f0, rgb f90, real a, real b) {
   return prefiltered * (f0 * a + f90 * b);
+}
+
+// The same with the chain read once per part (the lobe-matched lookup, envmap/split_sum_lobes.h): the A part's
+// read times f0 A plus the B part's read times f90 B.
+inline rgb game_split_sum_specular_lobes(rgb prefiltered_a, rgb prefiltered_b, rgb f0, rgb f90, real a, real b) {
+  return prefiltered_a * (f0 * a) + prefiltered_b * (f90 * b);
 }
 

@@ -19,6 +19,7 @@
 
 #include "shadelab/core/constants.h"
 #include "shadelab/envmap/dfg.h"
+#include "shadelab/envmap/split_sum_lobes.h"
 #include "shadelab/envmap/irradiance.h"
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/envmap/prefilter_ggx.h"
@@ -187,12 +188,23 @@ class GameShader {
       // The split sum of kernels/game_ambient.sl: prefiltered_ggx(d, r) (f0 A + f90 B), A and B at (N.V, r),
       // d the mirror direction R or the dominant direction (options.split_sum_direction).
       Vec3 r = kernel::game_reflect(wo_world, sf.frame.n);
-      if (m_options.split_sum_direction == GameSplitSumDirection::dominant) {
-        r = kernel::game_split_sum_direction(sf.frame.n, r, split->roughness * split->roughness);
-      }
       const DfgAb ab = dfg_lookup(*m_dfg, wo.z, split->roughness);
-      Rgb spec = Rgb(kernel::game_split_sum_specular(sample_ggx_chain(m_baked->specular_ggx, r, split->roughness), split->f0,
-                                                     split->f90, ab.a, ab.b));
+      Rgb spec;
+      if (m_options.split_sum_direction == GameSplitSumDirection::lobes) {
+        // Each part along and at the roughness of its own lobe's first moments (envmap/split_sum_lobes.h).
+        const SplitSumLobes lobes = split_sum_lobes(split_sum_lobe_table(), wo.z, split->roughness);
+        const Vec3 da = kernel::game_split_sum_lobe_direction(sf.frame.n, r, lobes.a.angle);
+        const Vec3 db = kernel::game_split_sum_lobe_direction(sf.frame.n, r, lobes.b.angle);
+        spec = Rgb(kernel::game_split_sum_specular_lobes(sample_ggx_chain(m_baked->specular_ggx, da, lobes.a.roughness),
+                                                         sample_ggx_chain(m_baked->specular_ggx, db, lobes.b.roughness),
+                                                         split->f0, split->f90, ab.a, ab.b));
+      } else {
+        if (m_options.split_sum_direction == GameSplitSumDirection::dominant) {
+          r = kernel::game_split_sum_direction(sf.frame.n, r, split->roughness * split->roughness);
+        }
+        spec = Rgb(kernel::game_split_sum_specular(sample_ggx_chain(m_baked->specular_ggx, r, split->roughness), split->f0,
+                                                   split->f90, ab.a, ab.b));
+      }
       const double e = ab.a + ab.b;  // E(N.V) with F = 1, of the same table
       if (split->filament != nullptr && e > 0.0) spec = spec * Rgb(kernel::filament_energy_compensation(split->f0, e));
       if (split->ggx_ms != nullptr) spec += Rgb(kernel::ggx_ms_albedo(*split->ggx_ms, e)) * e_over_pi;

@@ -143,6 +143,7 @@ TEST(GameSplitSum, ThePrefilteredFactorIsTheGgxConvolutionOfTheEnvironment) {
     s.settings.max_depth = 1;
     GameOptions g = split_sum_options();
     g.diffuse = GameAmbient::none;
+    g.split_sum_direction = GameSplitSumDirection::mirror;  // the chain read once along R, as published
     const GameEnvironment baked = bake_game_environment(s, g).value();
     ASSERT_EQ(baked.specular_ggx.levels.size(), 7u);
     double map_centre = 0.0;

@@ -124,6 +124,17 @@ Result<Image> shortcut_image(const Scene& s, GameOptions g, const GameEnvironmen
 
 }  // namespace
 
+std::string split_sum_correction_text(GameSplitSumDirection correction) {
+  switch (correction) {
+    case GameSplitSumDirection::mirror: return "mirror: R, uncorrected";
+    case GameSplitSumDirection::dominant: return "dominant: normalize(mix(R, n, alpha^2)), alpha = roughness^2";
+    case GameSplitSumDirection::lobes:
+      return "lobes: f0 A read along and at the roughness of the A lobe's first moments, f90 B of the B lobe's "
+             "(envmap/split_sum_lobes.h)";
+  }
+  return "";
+}
+
 IblErrorSummary summarize_ibl_error(const std::vector<IblErrorRow>& rows) {
   IblErrorSummary s;
   int n = 0, g = 0;
@@ -182,6 +193,7 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
 
   IblErrorMap map;
   map.model = model;
+  map.correction = o.correction;
   GameOptions split = o.game;
   split.ggx_specular = GameGgxSpecular::split_sum;
   split.diffuse = GameAmbient::none;
@@ -201,7 +213,7 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
     auto game = shortcut_image(s, split, *baked);
     if (!game) return game.error();
     map.split_sum.push_back(bin_images(s, *game, *ref, o.nv_bins, r));
-    split.split_sum_direction = GameSplitSumDirection::dominant;
+    split.split_sum_direction = o.correction;
     auto corrected = shortcut_image(s, split, *baked);
     if (!corrected) return corrected.error();
     map.corrected.push_back(bin_images(s, *corrected, *ref, o.nv_bins, r));

@@ -9,8 +9,10 @@
 //   ambient, no punctual light but a sky's sun, which game shading takes out of the environment and shades
 //   per pixel, unshadowed: a sphere cannot shadow itself): prefiltered_ggx(R, r) (f0 A + f90 B), docs/renderer.md, read along the
 //   mirror direction R as Karis 2013 publishes it (GameSplitSumDirection::mirror);
-// - the corrected shortcut: the same chain and table read along the dominant direction
-//   normalize(mix(R, n, alpha^2)) (GameSplitSumDirection::dominant, kernels/game_ambient.sl), the same storage.
+// - the corrected shortcut: the same chain and table read as options.correction says: by default each part
+//   (f0 A, f90 B) along and at the roughness that match its true lobe's first moments
+//   (GameSplitSumDirection::lobes, envmap/split_sum_lobes.h), or along the dominant direction
+//   normalize(mix(R, n, alpha^2)) (GameSplitSumDirection::dominant, kernels/game_ambient.sl); the same storage.
 // The environment is baked once (bake_game_environment) for all the game renders of a map.
 // The camera looks at the sphere from `view_direction` (default +Z, along the horizon) through a narrow
 // field of view (distance 20, the sphere filling the frame), so each pixel's N.V is that of its centre ray
@@ -51,6 +53,8 @@ struct IblErrorOptions {
   int threads = 0;  // 0: all cores
   Vec3 view_direction{0.0, 0.0, 1.0};  // from the sphere toward the camera
   GameOptions game;  // the shortcut's options; ggx_specular, diffuse, punctual, split_sum_direction set per map
+  // The corrected map's lookup: the lobe-matched reads (default) or the dominant direction.
+  GameSplitSumDirection correction = GameSplitSumDirection::lobes;
 };
 
 struct IblErrorCell {
@@ -77,7 +81,8 @@ struct IblErrorMap {
   std::string model;
   std::vector<IblErrorRow> split_sum;  // one row per roughness, read along R
   IblErrorSummary split_sum_summary;
-  std::vector<IblErrorRow> corrected;  // the same rows read along the dominant direction
+  std::vector<IblErrorRow> corrected;  // the same rows read as `correction` says
+  GameSplitSumDirection correction = GameSplitSumDirection::lobes;
   IblErrorSummary corrected_summary;
   // 1 - corrected.grazing_mean_abs / split_sum.grazing_mean_abs (0 when the latter is 0): the share of the
   // grazing error the correction removes (issue 11 asks for >= 0.25).
@@ -93,6 +98,9 @@ struct IblErrorMap {
 // diffuse lobe); giving either is an error. The diffuse shortcut is the SH map's.
 Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, const ParamAssignments& params,
                                   const IblErrorOptions& options = {});
+
+// What a correction is, in one line (the JSON's corrected.direction, the page).
+std::string split_sum_correction_text(GameSplitSumDirection correction);
 
 // The summary figures of a set of rows (what ibl_error_map fills in).
 IblErrorSummary summarize_ibl_error(const std::vector<IblErrorRow>& rows);
