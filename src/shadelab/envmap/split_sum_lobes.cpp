@@ -112,6 +112,17 @@ SplitSumLobes split_sum_lobes(const SplitSumLobeTable& table, double mu, double 
   out.a.roughness = lerp2([](const SplitSumLobes& s) { return s.a.roughness; });
   out.b.angle = lerp2([](const SplitSumLobes& s) { return s.b.angle; });
   out.b.roughness = lerp2([](const SplitSumLobes& s) { return s.b.roughness; });
+  // Below the first row's centre, linear toward the mirror (r = 0: both lobes the delta at R, at the angle
+  // acos(N.V) from n, roughness 0) instead of clamping to the first row.
+  const double r0 = 0.5 / n;
+  if (roughness < r0) {
+    const double w = std::max(roughness, 0.0) / r0;  // NaN reads the mirror
+    const double mirror_angle = std::acos(std::clamp(std::isfinite(mu) ? mu : 1.0, 0.0, 1.0));
+    for (SplitSumLobe* p : {&out.a, &out.b}) {
+      p->angle = mirror_angle + (p->angle - mirror_angle) * (std::isfinite(w) ? w : 0.0);
+      p->roughness *= std::isfinite(w) ? w : 0.0;
+    }
+  }
   return out;
 }
 

@@ -22,7 +22,8 @@
 // lobe, mean R.l = 2/3), the widest the chain has: a part wider than that reads roughness 1.
 //
 // Table: SPLIT_SUM_LOBE_SIZE^2 texels as the DFG table's (dfg.h): x = N.V = (i + 0.5) / size, y = perceptual
-// roughness r = (j + 0.5) / size, alpha = r^2, read bilinearly between texel centres, clamped at the edges.
+// roughness r = (j + 0.5) / size, alpha = r^2, read bilinearly between texel centres, clamped at the edges
+// but below the first row's centre, where it goes linearly to the mirror (r = 0: angle acos(N.V), roughness 0).
 // Computed once per process, at first use, by dfg_lobe_moments (relative tolerance 1e-5) and the inverse of
 // spread(alpha) (log-log interpolation between 513 nodes, alpha in [1e-4, 1]).
 #pragma once

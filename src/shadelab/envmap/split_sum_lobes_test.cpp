@@ -160,6 +160,17 @@ TEST(SplitSumLobes, TheTableHoldsItsTexelsAndReadsThemBilinearly) {
     EXPECT_DOUBLE_EQ(got.b.angle, want.b.angle);
     EXPECT_DOUBLE_EQ(got.b.roughness, want.b.roughness);
   }
+  // A mirror (r = 0) reads the delta at R; halfway to the first row's centre, halfway to it.
+  for (const double mu : {0.1, 0.5, 0.9}) {
+    const SplitSumLobes m = split_sum_lobes(t, mu, 0.0), row0 = split_sum_lobes(t, mu, 0.5 / n);
+    const SplitSumLobes half = split_sum_lobes(t, mu, 0.25 / n);
+    EXPECT_NEAR(m.a.angle, std::acos(mu), 1e-12);
+    EXPECT_NEAR(m.b.angle, std::acos(mu), 1e-12);
+    EXPECT_EQ(m.a.roughness, 0.0);
+    EXPECT_EQ(m.b.roughness, 0.0);
+    EXPECT_NEAR(half.a.roughness, 0.5 * row0.a.roughness, 1e-12);
+    EXPECT_NEAR(half.b.angle, 0.5 * (std::acos(mu) + row0.b.angle), 1e-12);
+  }
   // Halfway between two texel centres in N.V: the mean of the two.
   const SplitSumLobes lo = split_sum_lobes(t, 3.5 / n, 9.5 / n), hi = split_sum_lobes(t, 4.5 / n, 9.5 / n);
   const SplitSumLobes mid = split_sum_lobes(t, 4.0 / n, 9.5 / n);
