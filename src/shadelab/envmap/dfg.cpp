@@ -32,6 +32,15 @@ struct Integrand {
     return {s * std::cos(phi), s * std::sin(phi), c};
   }
 
+  // The horizon of l = reflect(-v, h) for h at azimuth phi: l.z > 0 <=> theta_h < (delta + pi/2) / 2 with
+  // delta = atan2(sin(theta_v) cos(phi), cos(theta_v)) (l.z = 2 (V.H) N.H - N.V = R cos(2 theta_h - delta)),
+  // as u = -ln(1 - xi) = ln(1 + tan^2 / alpha^2) (the quadratures' variable).
+  double u_max(double phi) const {
+    const double theta = 0.5 * (std::atan2(v.x * std::cos(phi), mu) + 0.5 * pi);
+    const double t = std::tan(theta) / alpha;
+    return std::log1p(t * t);
+  }
+
   // G2 (V.H) / (N.V N.H) times (1 - Fc, Fc): the integrand of A and B in the (xi, phi) measure (Karis 2013
   // eq. 8 written for the height-correlated G2). Zero where the mirrored l is below the horizon.
   void eval(const Vec3& h, double& a, double& b) const {
@@ -69,15 +78,7 @@ double radical_inverse(std::uint32_t i) {
 
 DfgValue dfg_quadrature(double mu, double alpha, double tolerance) {
   const Integrand f = make_integrand(mu, alpha);
-  const double sin_v = f.v.x;
-  // The horizon of l = reflect(-v, h) for h at azimuth phi: l.z > 0 <=> theta_h < (delta + pi/2) / 2 with
-  // delta = atan2(sin(theta_v) cos(phi), cos(theta_v)) (l.z = 2 (V.H) N.H - N.V = R cos(2 theta_h - delta)),
-  // as u = -ln(1 - xi) = ln(1 + tan^2 / alpha^2) (below).
-  const auto u_max = [&](double phi) {
-    const double theta = 0.5 * (std::atan2(sin_v * std::cos(phi), mu) + 0.5 * pi);
-    const double t = std::tan(theta) / alpha;
-    return std::log1p(t * t);
-  };
+  const auto u_max = [&](double phi) { return f.u_max(phi); };
   QuadratureOptions options;
   options.rel_tol = 0.0;
   options.abs_tol = 0.5 * tolerance;
@@ -114,14 +115,9 @@ DfgValue dfg_quadrature(double mu, double alpha, double tolerance) {
 
 DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol) {
   const Integrand f = make_integrand(mu, alpha);
-  const double sin_v = f.v.x;
   // The same variables and horizon bound as dfg_quadrature: (phi, u) over [0, pi] (every integrand below is
   // even in phi: l.x and l.z are, l.y is odd and its integral vanishes), u = ln(1 + tan^2(theta_h) / alpha^2).
-  const auto u_max = [&](double phi) {
-    const double theta = 0.5 * (std::atan2(sin_v * std::cos(phi), mu) + 0.5 * pi);
-    const double t = std::tan(theta) / alpha;
-    return std::log1p(t * t);
-  };
+  const auto u_max = [&](double phi) { return f.u_max(phi); };
   QuadratureOptions options;
   options.rel_tol = rel_tol;
   options.abs_tol = 1e-14;

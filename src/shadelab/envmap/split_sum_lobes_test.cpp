@@ -14,26 +14,15 @@
 #include <span>
 
 #include "shadelab/envmap/dfg.h"
+#include "shadelab/envmap/ggx_test_formulas.h"
 #include "shadelab/numeric/quadrature.h"
 
 namespace shadelab {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
-// GGX D as a function of cos(theta_h) (Walter et al. 2007 eq. 33).
-double ggx_d(double cos_h, double alpha) {
-  if (cos_h <= 0.0) return 0.0;
-  const double c2 = cos_h * cos_h;
-  const double s = alpha * alpha + (1.0 - c2) / c2;
-  return alpha * alpha / (kPi * c2 * c2 * s * s);
-}
-
-// Smith's Lambda for GGX (Walter et al. 2007 eq. 34, Heitz 2014 eq. 86).
-double ggx_lambda(double cos_t, double alpha) {
-  const double c2 = cos_t * cos_t;
-  return 0.5 * (-1.0 + std::sqrt(1.0 + alpha * alpha * (1.0 - c2) / c2));
-}
+using test_formulas::ggx_d;
+using test_formulas::ggx_lambda;
 
 struct Moments {
   double weight[2];

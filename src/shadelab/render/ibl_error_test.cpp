@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "shadelab/core/constants.h"
 #include "shadelab/color/rgb.h"
@@ -178,26 +179,38 @@ TEST(IblError, SunriseMeasured) {
 
 // The correction of issue 11 at grazing: the grazing bins need the full size (at 192 pixels the bin N.V
 // 0.125-0.25 holds about 1000 pixels; at 64 every bin below 0.3 is inside the rim margin). Two rough rows,
-// where the split sum's error at grazing is largest (docs/envmap.md): the dominant direction must remove at
-// least a quarter of the mean |error| at N.V < 0.3, on sunrise and on forest (studio, where it does not, is
-// in docs/envmap.md).
-TEST(IblError, TheDominantDirectionCutsTheGrazingError) {
+// where the split sum's error at grazing is largest (docs/envmap.md), at 32 spp: the map of `name` with the
+// given correction (nullopt: the map is skipped when blender-data is missing).
+std::optional<IblErrorMap> grazing_map(const char* name, GameSplitSumDirection correction) {
   const std::filesystem::path dir = SHADELAB_BLENDER_WORLDS;
-  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << dir << " is missing (scripts/setup.sh installs blender-data)";
+  if (!std::filesystem::is_directory(dir)) return std::nullopt;
+  Scene s;
+  s.environment.kind = Environment::Kind::image;
+  s.environment.latlong = read_image(dir / name).value();
+  IblErrorOptions o;
+  o.roughness = {0.55, 0.85};
+  o.spp = 32;
+  o.correction = correction;
+  auto map = ibl_error_map(s, "ggx", {}, o);
+  EXPECT_TRUE(map) << map.error().message;
+  if (!map) return std::nullopt;
+  std::printf("%s: grazing mean |error| along R %.3g, corrected %.3g (%.1f%% less); mean %.3g -> %.3g; %.1f s\n", name,
+              map->split_sum_summary.grazing_mean_abs, map->corrected_summary.grazing_mean_abs,
+              100.0 * map->grazing_reduction, map->split_sum_summary.mean_abs, map->corrected_summary.mean_abs,
+              map->seconds);
+  EXPECT_GT(map->split_sum_summary.grazing_mean_abs, 0.0);  // the grazing bin is not empty
+  return *map;
+}
+
+// The dominant direction must remove at least a quarter of the mean |error| at N.V < 0.3, on sunrise and on
+// forest (studio, where it does not, is in docs/envmap.md).
+TEST(IblError, TheDominantDirectionCutsTheGrazingError) {
+  if (!std::filesystem::is_directory(SHADELAB_BLENDER_WORLDS)) {
+    GTEST_SKIP() << SHADELAB_BLENDER_WORLDS << " is missing (scripts/setup.sh installs blender-data)";
+  }
   for (const char* name : {"sunrise.exr", "forest.exr"}) {
-    Scene s;
-    s.environment.kind = Environment::Kind::image;
-    s.environment.latlong = read_image(dir / name).value();
-    IblErrorOptions o;
-    o.roughness = {0.55, 0.85};
-    o.spp = 32;
-    o.correction = GameSplitSumDirection::dominant;
-    const auto map = ibl_error_map(s, "ggx", {}, o);
-    ASSERT_TRUE(map) << map.error().message;
-    std::printf("%s: grazing mean |error| along R %.3g, along the dominant direction %.3g (%.1f%% less); %.1f s\n",
-                name, map->split_sum_summary.grazing_mean_abs, map->corrected_summary.grazing_mean_abs,
-                100.0 * map->grazing_reduction, map->seconds);
-    EXPECT_GT(map->split_sum_summary.grazing_mean_abs, 0.0);  // the grazing bin is not empty
+    const auto map = grazing_map(name, GameSplitSumDirection::dominant);
+    ASSERT_TRUE(map.has_value());
     EXPECT_GE(map->grazing_reduction, 0.25) << name;
   }
 }
@@ -206,23 +219,13 @@ TEST(IblError, TheDominantDirectionCutsTheGrazingError) {
 // error worse (-84% on the full map, docs/envmap.md), and forest: the grazing error of the two rows cut by at
 // least a quarter, and the whole map's mean error below the uncorrected one.
 TEST(IblError, TheLobeReadsCutTheGrazingError) {
-  const std::filesystem::path dir = SHADELAB_BLENDER_WORLDS;
-  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << dir << " is missing (scripts/setup.sh installs blender-data)";
+  if (!std::filesystem::is_directory(SHADELAB_BLENDER_WORLDS)) {
+    GTEST_SKIP() << SHADELAB_BLENDER_WORLDS << " is missing (scripts/setup.sh installs blender-data)";
+  }
+  ASSERT_EQ(IblErrorOptions{}.correction, GameSplitSumDirection::lobes);
   for (const char* name : {"courtyard.exr", "forest.exr"}) {
-    Scene s;
-    s.environment.kind = Environment::Kind::image;
-    s.environment.latlong = read_image(dir / name).value();
-    IblErrorOptions o;
-    o.roughness = {0.55, 0.85};
-    o.spp = 32;
-    ASSERT_EQ(o.correction, GameSplitSumDirection::lobes);
-    const auto map = ibl_error_map(s, "ggx", {}, o);
-    ASSERT_TRUE(map) << map.error().message;
-    std::printf("%s: grazing mean |error| along R %.3g, read per lobe %.3g (%.1f%% less); mean %.3g -> %.3g; %.1f s\n",
-                name, map->split_sum_summary.grazing_mean_abs, map->corrected_summary.grazing_mean_abs,
-                100.0 * map->grazing_reduction, map->split_sum_summary.mean_abs, map->corrected_summary.mean_abs,
-                map->seconds);
-    EXPECT_GT(map->split_sum_summary.grazing_mean_abs, 0.0);
+    const auto map = grazing_map(name, GameSplitSumDirection::lobes);
+    ASSERT_TRUE(map.has_value());
     EXPECT_GE(map->grazing_reduction, 0.25) << name;
     EXPECT_LT(map->corrected_summary.mean_abs, map->split_sum_summary.mean_abs) << name;
   }
