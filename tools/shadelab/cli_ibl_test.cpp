@@ -14,6 +14,7 @@
 #include "cli_run.h"
 #define SHADELAB_SOURCE_DIR SHADELAB_SCENES_DIR "/.."
 #include "shadelab/envmap/container_test_util.h"
+#include "shadelab/envmap/split_sum_lobes.h"
 #include "shadelab/envmap/cubemap.h"
 #include "shadelab/envmap/latlong.h"
 #include "shadelab/image/image_io.h"
@@ -182,8 +183,8 @@ TEST(CliIbl, ManifestNamesEveryFileAsWritten) {
     printed.erase("seconds");
     EXPECT_EQ(printed, m);
     EXPECT_EQ(listing(dir), (std::set<std::string>{"specular." + container, "irradiance." + container, "sh9.json", "dfg.ktx2",
-                                                    "manifest.json"}));
-    ASSERT_EQ(m["files"].size(), 4u);
+                                                    "split_sum_lobes.json", "manifest.json"}));
+    ASSERT_EQ(m["files"].size(), 5u);
     for (const auto& [role, e] : m["files"].items()) {
       SCOPED_TRACE(role);
       const fs::path file = dir / e["file"].get<std::string>();
@@ -213,6 +214,20 @@ TEST(CliIbl, ManifestNamesEveryFileAsWritten) {
         EXPECT_EQ(d["width"], e["size"]);
         EXPECT_EQ(d["mipMapCount"], e["levels"]);
         EXPECT_NEAR(d["texels"][0]["value"][0].get<double>(), 0.5, 1e-3);
+      } else if (role == "split_sum_lobes") {
+        EXPECT_EQ(e["container"], "json");
+        const auto t = read_json(file);
+        const int n = t["size"];
+        ASSERT_EQ(n, shadelab::split_sum_lobe_size);
+        ASSERT_EQ(t["texels"].size(), static_cast<std::size_t>(n * n));
+        // Texel (i = 5, j = 20) at its centre, as the library computes it there.
+        const auto want = shadelab::split_sum_lobes_at(5.5 / n, 20.5 / n);
+        const auto& got = t["texels"][static_cast<std::size_t>(20 * n + 5)];
+        EXPECT_NEAR(got[0].get<double>(), want.a.angle, 1e-12);
+        EXPECT_NEAR(got[1].get<double>(), want.a.roughness, 1e-12);
+        EXPECT_NEAR(got[2].get<double>(), want.b.angle, 1e-12);
+        EXPECT_NEAR(got[3].get<double>(), want.b.roughness, 1e-12);
+        EXPECT_EQ(t["use"], e["use"]);
       } else {
         EXPECT_EQ(e["container"], "json");
         const auto sh = read_json(file);

@@ -6,6 +6,8 @@
 //   irradiance.ktx2|dds the cosine-convolved irradiance cube (bake irradiance)
 //   sh9.json           the SH9 coefficients and their convention (bake sh)
 //   dfg.ktx2           the DFG table, RG16F (RGBA16F with --multiscatter) (bake dfg)
+//   split_sum_lobes.json the lobe-matched lookup's table (envmap/split_sum_lobes.h): where and how rough to read
+//                      the specular cube for each of the split sum's two parts, per (N.V, roughness)
 //   manifest.json      each file's container, format, size, levels, faces and the conventions
 // Every file is computed and encoded first, then all are written as one step (write_files_atomically): a
 // refusal or a failure leaves DIR as it was (a DIR this run created is removed again).
@@ -24,6 +26,7 @@
 #include "shadelab/envmap/dds.h"
 #include "shadelab/envmap/irradiance.h"
 #include "shadelab/envmap/ktx2.h"
+#include "shadelab/envmap/split_sum_lobes.h"
 #include "shadelab/envmap/texel_format.h"
 #include "shadelab/image/image_io.h"
 
@@ -31,6 +34,27 @@ namespace shadelab::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The lobe table as JSON: its axes and channels as the DFG table states them, the texels row-major.
+nlohmann::json split_sum_lobes_json(const SplitSumLobeTable& t) {
+  nlohmann::json texels = nlohmann::json::array();
+  for (const SplitSumLobes& l : t.texels) texels.push_back({l.a.angle, l.a.roughness, l.b.angle, l.b.roughness});
+  return {{"content", "the split sum's lobe-matched lookup (shadelab, envmap/split_sum_lobes.h): for each part, the "
+                      "direction and perceptual roughness at which to read the specular cube so that the read matches "
+                      "the first moments (mean direction, spread) of that part's true lobe"},
+          {"size", t.size},
+          {"x", "N.V = (i + 0.5) / size, column i"},
+          {"y", "perceptual roughness r = (j + 0.5) / size, row j; alpha = r^2"},
+          {"texel_order", "row-major: texel (i, j) is texels[j * size + i]"},
+          {"channels", {"angle_a: radians from n toward R (F0 A part)", "roughness_a: perceptual roughness of its read",
+                        "angle_b: radians from n toward R (B part)", "roughness_b"}},
+          {"use", "bilinear between texel centres, clamped at the edges, but below the first row linear to the mirror "
+                  "(angle acos(N.V), roughness 0); d_k = n cos(angle_k) + t sin(angle_k), t the unit vector along R - "
+                  "(R.n) n (n when R = n); specular = F0 A prefiltered(d_A, lod(roughness_a)) + B prefiltered(d_B, "
+                  "lod(roughness_b)), A and B from the DFG table, lod the specular cube's mip_mapping"},
+          {"model", "GGX, height-correlated Smith G2, Schlick F, as the DFG table"},
+          {"texels", texels}};
+}
 
 struct IblOptions {
   std::string input;
@@ -116,7 +140,8 @@ void run_ibl(const IblOptions& o) {
   }
   const std::string ext = "." + o.container;
   const std::string specular_file = "specular" + ext, irradiance_file = "irradiance" + ext;
-  const std::vector<std::string> names = {specular_file, irradiance_file, "sh9.json", "dfg.ktx2", "manifest.json"};
+  const std::vector<std::string> names = {specular_file, irradiance_file, "sh9.json", "dfg.ktx2", "split_sum_lobes.json",
+                                          "manifest.json"};
   std::vector<NamedPath> outputs;
   for (const std::string& name : names) {
     const fs::path p = dir / name;
@@ -142,6 +167,9 @@ void run_ibl(const IblOptions& o) {
   dfg_options.size = o.dfg_size;
   dfg_options.multiscatter = o.multiscatter;
   const DfgTable dfg = bake_dfg(dfg_options);
+
+  const SplitSumLobeTable& lobes = split_sum_lobe_table();
+  const nlohmann::json lobes_json = split_sum_lobes_json(lobes);
 
   const nlohmann::json mip_mapping = ggx_mip_mapping_json(chain);
   const std::string irradiance_convention = units == RadianceUnits::game
@@ -189,13 +217,17 @@ void run_ibl(const IblOptions& o) {
                               {"error_meaning", "largest per-texel absolute error estimate of the quadrature "
                                                 "(before half-float rounding)"}};
   dfg_entry.update(dfg_conventions_json(o.multiscatter));
+  const nlohmann::json lobes_entry = {{"file", "split_sum_lobes.json"}, {"container", "json"}, {"size", lobes.size},
+                                      {"content", lobes_json["content"]}, {"use", lobes_json["use"]}};
   const nlohmann::json sh_entry = {{"file", "sh9.json"}, {"container", "json"}, {"order", 3}, {"coefficients", 9},
                                    {"units", sh_json["units"]}, {"content", "SH9 radiance and irradiance coefficients"}};
 
   nlohmann::json manifest = {
       {"generator", ktx2_writer_name},
       {"input", o.input},
-      {"files", {{"specular", specular_entry}, {"irradiance", irradiance_entry}, {"sh9", sh_entry}, {"dfg", dfg_entry}}},
+      {"files",
+       {{"specular", specular_entry}, {"irradiance", irradiance_entry}, {"sh9", sh_entry}, {"dfg", dfg_entry},
+        {"split_sum_lobes", lobes_entry}}},
       {"conventions",
        {{"cube_faces", {"+X", "-X", "+Y", "-Y", "+Z", "-Z"}},
         {"cube_orientation", cube_convention_text},
@@ -206,7 +238,8 @@ void run_ibl(const IblOptions& o) {
           {"irradiance", irradiance_convention},
           {"convention", o.units}}},
         {"split_sum", "specular = prefiltered(R, lod = mip_mapping(r)) * (F0 A + B) with A, B from dfg at (N.V, r); "
-                      "diffuse = albedo * irradiance (game units: no pi)"},
+                      "or, corrected (shadelab's default), F0 A prefiltered(d_A, lod(r_A)) + B prefiltered(d_B, lod(r_B)) "
+                      "with d_k, r_k from split_sum_lobes; diffuse = albedo * irradiance (game units: no pi)"},
         {"dfg", dfg_conventions_json(o.multiscatter)},
         {"sh",
          {{"basis", sh_json["basis"]},
@@ -229,6 +262,7 @@ void run_ibl(const IblOptions& o) {
   files.emplace_back(dir / irradiance_file, std::move(irradiance_bytes));
   files.emplace_back(dir / "sh9.json", text_bytes(sh_json));
   files.emplace_back(dir / "dfg.ktx2", std::move(dfg_bytes));
+  files.emplace_back(dir / "split_sum_lobes.json", text_bytes(lobes_json));
   files.emplace_back(dir / "manifest.json", text_bytes(manifest));  // last: a manifest names complete files
 
   // The directories this run creates, outermost first, so that a failed write removes them again.
@@ -251,7 +285,7 @@ void run_ibl(const IblOptions& o) {
     print_json(j);
   } else {
     fmt::print("wrote {}: {} (GGX, {} x {} faces, {} levels, {} mapping), {} ({} x {}), sh9.json, dfg.ktx2 ({} x {} {}), "
-               "manifest.json\n",
+               "split_sum_lobes.json, manifest.json\n",
                dir.string(), specular_file, o.size, o.size, chain.levels.size(), o.mapping, irradiance_file,
                o.irradiance_size, o.irradiance_size, dfg.size, dfg.size, ktx2_image_vk_format_name(dfg_format));
   }
@@ -261,7 +295,7 @@ void add_bake_ibl(CLI::App& app, Command& command) {
   CLI::App* bake = app.get_subcommand("bake");
   auto o = std::make_shared<IblOptions>();
   auto* sub = bake->add_subcommand("ibl", "split-sum IBL in one directory: GGX specular cube, irradiance cube, SH9, "
-                                          "DFG table and manifest.json");
+                                          "DFG table, split-sum lobe table and manifest.json");
   sub->add_option("INPUT", o->input, "environment: lat-long (2:1) or cube cross (4:3, 3:4); EXR, HDR or PNG")->required();
   sub->add_option("--out-dir", o->out_dir, "output directory (created if missing)")->required();
   sub->add_option("--size", o->size, "face size of the specular cube (a power of two)")->capture_default_str();
