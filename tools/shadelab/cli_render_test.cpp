@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 
 #include "cli_run.h"
+#include "shadelab/image/image.h"
 #include "shadelab/image/image_io.h"
 
 namespace {
@@ -51,6 +52,42 @@ TEST(CliRender, BadInput) {
   const fs::path bad = temp_dir() / "bad.json";
   std::ofstream(bad) << R"({"shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": -2, "material": "x"}]})";
   expect_usage_error("render " + bad.string(), "/shapes/0/radius");
+}
+
+// A ggx sphere (kd 0, roughness 0.6) under a lat-long whose radiance varies with direction: game mode's
+// --ggx-specular and --split-sum-lookup reach the renderer (each changes the image), the default lookup is
+// lobes, and misplaced or unknown values are one line and exit 2.
+TEST(CliRender, GgxSpecularSplitSumAndItsLookup) {
+  const fs::path env = temp_dir() / "gradient_env.exr";
+  shadelab::Image sky(32, 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 32; ++x) sky.set(x, y, {0.2 + 3.0 * (16 - y) / 16.0, 0.5 + x / 32.0, 0.3});
+  ASSERT_TRUE(shadelab::write_image(sky, env).has_value());
+  const fs::path scene = temp_dir() / "ggx_sphere.json";
+  std::ofstream(scene) << R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "fov": 32, "width": 24, "height": 24},
+    "materials": {"m": {"model": "ggx", "params": {"kd": 0, "roughness": 0.6}}},
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}],
+    "environment": {"file": ")" + env.string() + R"("}})";
+  const auto render = [&](const std::string& flags, const std::string& name) {
+    const fs::path out = temp_dir() / name;
+    const auto r = run("render " + scene.string() + " --mode game --spp 1 --specular-size 16 --no-png --out " +
+                       out.string() + flags);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return shadelab::read_image(out).value().data;
+  };
+  const auto phong = render("", "ggx_phong.exr");
+  const auto split = render(" --ggx-specular split-sum", "ggx_split.exr");
+  const auto lobes = render(" --ggx-specular split-sum --split-sum-lookup lobes", "ggx_lobes.exr");
+  const auto mirror = render(" --ggx-specular split-sum --split-sum-lookup mirror", "ggx_mirror.exr");
+  EXPECT_NE(phong, split);
+  EXPECT_EQ(split, lobes);  // lobes is the default lookup
+  EXPECT_NE(lobes, mirror);
+  expect_usage_error("render " + scene.string() + " --ggx-specular split-sum", "--ggx-specular applies to --mode game");
+  expect_usage_error("render " + scene.string() + " --mode game --ggx-specular ggx", "--ggx-specular: 'ggx' is not one of");
+  expect_usage_error("render " + scene.string() + " --mode game --split-sum-lookup mirror",
+                     "--split-sum-lookup applies to --ggx-specular split-sum");
+  expect_usage_error("render " + scene.string() + " --mode game --ggx-specular split-sum --split-sum-lookup up",
+                     "--split-sum-lookup: 'up' is not one of");
 }
 
 TEST(CliRender, InterruptWritesThePartialImage) {

@@ -75,6 +75,9 @@ struct RenderCliOptions {
   int env_size = 64;       // game mode: face size the environment is baked at (GameOptions::environment_size)
   int specular_size = 64;  // game mode: face size of the prefiltered cube's level 0
   bool env_size_given = false, specular_size_given = false;
+  std::string ggx_specular = "phong";      // game mode: GameOptions::ggx_specular
+  std::string split_sum_lookup = "lobes";  // game mode: GameOptions::split_sum_direction
+  bool ggx_specular_given = false, split_sum_lookup_given = false;
   bool json = false;
   bool progress = false;
   std::string shard;  // "I/N": render one part for `shadelab merge` (docs/scale-out.md)
@@ -224,6 +227,19 @@ void run_render(const RenderCliOptions& o) {
   if (o.specular_size < 1 || o.specular_size > 1024 || (o.specular_size & (o.specular_size - 1)) != 0) {
     throw UsageError(fmt::format("--specular-size: {} is not a power of two in [1, 1024]", o.specular_size));
   }
+  if ((o.ggx_specular_given || o.split_sum_lookup_given) && o.mode != "game") {
+    throw UsageError(std::string(o.ggx_specular_given ? "--ggx-specular" : "--split-sum-lookup") + " applies to --mode game");
+  }
+  if (o.ggx_specular == "phong") go.ggx_specular = GameGgxSpecular::phong;
+  else if (o.ggx_specular == "split-sum") go.ggx_specular = GameGgxSpecular::split_sum;
+  else throw UsageError("--ggx-specular: '" + o.ggx_specular + "' is not one of phong | split-sum");
+  if (o.split_sum_lookup == "lobes") go.split_sum_direction = GameSplitSumDirection::lobes;
+  else if (o.split_sum_lookup == "dominant") go.split_sum_direction = GameSplitSumDirection::dominant;
+  else if (o.split_sum_lookup == "mirror") go.split_sum_direction = GameSplitSumDirection::mirror;
+  else throw UsageError("--split-sum-lookup: '" + o.split_sum_lookup + "' is not one of lobes | dominant | mirror");
+  if (o.split_sum_lookup_given && go.ggx_specular != GameGgxSpecular::split_sum) {
+    throw UsageError("--split-sum-lookup applies to --ggx-specular split-sum");
+  }
   go.environment_size = o.env_size;
   go.specular_size = o.specular_size;
   go.threads = ro.threads;
@@ -328,6 +344,14 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_option("--env-size", o->env_size, "game mode: face size the environment is baked at (SH9 and the cube)")->capture_default_str();
   sub->add_option("--specular-size", o->specular_size, "game mode: face size of the prefiltered specular cube's level 0 (a power of two)")
       ->capture_default_str();
+  sub->add_option("--ggx-specular", o->ggx_specular,
+                  "game mode: the specular ambient of ggx and filament materials: phong (the Phong chain, as the "
+                  "explorer shades them) or split-sum (GGX chain x DFG table)")
+      ->capture_default_str();
+  sub->add_option("--split-sum-lookup", o->split_sum_lookup,
+                  "game mode, --ggx-specular split-sum: lobes (each part at its lobe's first moments), dominant "
+                  "(normalize(mix(R, n, alpha^2))) or mirror (R)")
+      ->capture_default_str();
   sub->add_flag("--json", o->json, "machine-readable summary");
   sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");
   sub->add_option("--shard", o->shard, "I/N: render part I of N (0 <= I < N) into --out, for shadelab merge (docs/scale-out.md)");
@@ -341,6 +365,8 @@ void add_render_command(CLI::App& app, Command& command) {
     o->split_given = sub->count("--split") > 0;
     o->env_size_given = sub->count("--env-size") > 0;
     o->specular_size_given = sub->count("--specular-size") > 0;
+    o->ggx_specular_given = sub->count("--ggx-specular") > 0;
+    o->split_sum_lookup_given = sub->count("--split-sum-lookup") > 0;
     command.run = [o] { run_render(*o); };
   });
 }

@@ -120,7 +120,7 @@ DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol) {
   const auto u_max = [&](double phi) { return f.u_max(phi); };
   QuadratureOptions options;
   options.rel_tol = rel_tol;
-  options.abs_tol = 1e-14;
+  options.abs_tol = 1e-10;
   options.initial_intervals = 4;
   options.max_subdivisions = 4000;
   QuadratureOptions inner = options;

@@ -101,6 +101,9 @@ class GameShader {
     if (any_split_sum) {
       if (m_options.dfg_size < 1 || m_options.dfg_size > 4096) return make_error("dfg_size must be in [1, 4096]");
       m_dfg = &game_dfg_table(m_options.dfg_size);
+      // Computed here, on this thread (its quadrature runs in parallel), not at the first pixel's lookup,
+      // where the other render threads would wait on it.
+      if (m_options.split_sum_direction == GameSplitSumDirection::lobes) m_lobes = &split_sum_lobe_table();
     }
     m_sh += m_sh_lights;  // the environment's coefficients (zero without one) and the D3DX-style lights
     // Per material: Phong exponent, wrap and the specular lobe's directional albedo over cos(theta_o).
@@ -190,9 +193,9 @@ class GameShader {
       Vec3 r = kernel::game_reflect(wo_world, sf.frame.n);
       const DfgAb ab = dfg_lookup(*m_dfg, wo.z, split->roughness);
       Rgb spec;
-      if (m_options.split_sum_direction == GameSplitSumDirection::lobes) {
+      if (m_lobes != nullptr) {
         // Each part along and at the roughness of its own lobe's first moments (envmap/split_sum_lobes.h).
-        const SplitSumLobes lobes = split_sum_lobes(split_sum_lobe_table(), wo.z, split->roughness);
+        const SplitSumLobes lobes = split_sum_lobes(*m_lobes, wo.z, split->roughness);
         const Vec3 da = kernel::game_split_sum_lobe_direction(sf.frame.n, r, lobes.a.angle);
         const Vec3 db = kernel::game_split_sum_lobe_direction(sf.frame.n, r, lobes.b.angle);
         spec = Rgb(kernel::game_split_sum_specular_lobes(sample_ggx_chain(m_baked->specular_ggx, da, lobes.a.roughness),
@@ -260,6 +263,7 @@ class GameShader {
   const GameEnvironment* m_baked = nullptr;  // the caller's bake, or m_owned
   GameEnvironment m_owned;
   const DfgTable* m_dfg = nullptr;
+  const SplitSumLobeTable* m_lobes = nullptr;  // the lobe-matched lookup's table (split_sum_direction lobes)
   std::vector<bool> m_split_sum;  // per material: the split-sum specular ambient
   std::vector<GameLobe> m_info;
   std::vector<kernel::GameSpecularAlbedo> m_albedo_tables;
