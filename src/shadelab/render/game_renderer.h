@@ -50,8 +50,8 @@ enum class GameAmbient { sh9, irradiance_map, none };
 
 // The specular ambient of the microfacet-GGX models (ggx, filament): the split sum with a GGX-prefiltered
 // chain and a DFG table, or the Phong chain the Phong-family models use (the default for now: the explorer's
-// WebGL sphere, which must match this renderer, still shades GGX on the Phong chain, and the split sum under a
-// real environment is not yet proved against a brute-force convolution; docs/renderer.md).
+// WebGL sphere, which must match this renderer, still shades GGX on the Phong chain; `render --ggx-specular
+// split-sum` and ibl-error use the split sum; docs/renderer.md).
 enum class GameGgxSpecular { split_sum, phong };
 
 // The direction the split sum reads its GGX chain along: the mirror direction R (Karis 2013 as published), or
