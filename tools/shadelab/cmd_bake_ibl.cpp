@@ -38,11 +38,11 @@ namespace fs = std::filesystem;
 // The lobe table as JSON: its axes and channels as the DFG table states them, the texels row-major.
 nlohmann::json split_sum_lobes_json(const SplitSumLobeTable& t) {
   nlohmann::json texels = nlohmann::json::array();
-  for (const SplitSumLobes& l : t.texels) texels.push_back({l.a.angle, l.a.roughness, l.b.angle, l.b.roughness});
+  for (const SplitSumLobes& l : t.all()) texels.push_back({l.a.angle, l.a.roughness, l.b.angle, l.b.roughness});
   return {{"content", "the split sum's lobe-matched lookup (shadelab, envmap/split_sum_lobes.h): for each part, the "
                       "direction and perceptual roughness at which to read the specular cube so that the read matches "
                       "the first moments (mean direction, spread) of that part's true lobe"},
-          {"size", t.size},
+          {"size", t.size()},
           {"x", "N.V = (i + 0.5) / size, column i"},
           {"y", "perceptual roughness r = (j + 0.5) / size, row j; alpha = r^2"},
           {"texel_order", "row-major: texel (i, j) is texels[j * size + i]"},
@@ -217,7 +217,7 @@ void run_ibl(const IblOptions& o) {
                               {"error_meaning", "largest per-texel absolute error estimate of the quadrature "
                                                 "(before half-float rounding)"}};
   dfg_entry.update(dfg_conventions_json(o.multiscatter));
-  const nlohmann::json lobes_entry = {{"file", "split_sum_lobes.json"}, {"container", "json"}, {"size", lobes.size},
+  const nlohmann::json lobes_entry = {{"file", "split_sum_lobes.json"}, {"container", "json"}, {"size", lobes.size()},
                                       {"content", lobes_json["content"]}, {"use", lobes_json["use"]}};
   const nlohmann::json sh_entry = {{"file", "sh9.json"}, {"container", "json"}, {"order", 3}, {"coefficients", 9},
                                    {"units", sh_json["units"]}, {"content", "SH9 radiance and irradiance coefficients"}};

@@ -81,27 +81,41 @@ SplitSumLobes split_sum_lobes_at(double mu, double roughness) {
   return out;
 }
 
+SplitSumLobeTable::SplitSumLobeTable(int size)
+    : size_(size),
+      texels_(static_cast<std::size_t>(size) * static_cast<std::size_t>(size)),
+      row_once_(std::make_unique<std::once_flag[]>(static_cast<std::size_t>(size))) {}
+
+void SplitSumLobeTable::fill_row(int j) const {
+  std::call_once(row_once_[static_cast<std::size_t>(j)], [&] {
+    for (int i = 0; i < size_; ++i)
+      texels_[static_cast<std::size_t>(j * size_ + i)] = split_sum_lobes_at((i + 0.5) / size_, (j + 0.5) / size_);
+  });
+}
+
+const SplitSumLobes& SplitSumLobeTable::at(int i, int j) const {
+  fill_row(j);
+  return texels_[static_cast<std::size_t>(j * size_ + i)];
+}
+
+const std::vector<SplitSumLobes>& SplitSumLobeTable::all() const {
+  spread_table();  // built once, before the rows read it
+  tbb::parallel_for(tbb::blocked_range<int>(0, size_), [&](const tbb::blocked_range<int>& r) {
+    for (int j = r.begin(); j != r.end(); ++j) fill_row(j);
+  });
+  return texels_;
+}
+
 const SplitSumLobeTable& split_sum_lobe_table() {
-  static const SplitSumLobeTable table = [] {
-    SplitSumLobeTable t;
-    t.size = split_sum_lobe_size;
-    const int n = split_sum_lobe_size;
-    t.texels.resize(static_cast<std::size_t>(n * n));
-    spread_table();  // built once, before the threads read it
-    tbb::parallel_for(tbb::blocked_range<int>(0, n * n), [&](const tbb::blocked_range<int>& r) {
-      for (int k = r.begin(); k != r.end(); ++k)
-        t.texels[static_cast<std::size_t>(k)] = split_sum_lobes_at((k % n + 0.5) / n, (k / n + 0.5) / n);
-    });
-    return t;
-  }();
+  static const SplitSumLobeTable table;
   return table;
 }
 
 SplitSumLobes split_sum_lobes(const SplitSumLobeTable& table, double mu, double roughness) {
-  const int n = table.size;
+  const int n = table.size();
   if (n < 1) return {};
   const TexelLerp x = texel_lerp(mu, n), y = texel_lerp(roughness, n);
-  const auto at = [&](int i, int j) { return table.texels[static_cast<std::size_t>(j * n + i)]; };
+  const auto at = [&](int i, int j) { return table.at(i, j); };
   const auto lerp2 = [&](auto get) {
     const double lo = get(at(x.i0, y.i0)) * (1.0 - x.t) + get(at(x.i1, y.i0)) * x.t;
     const double hi = get(at(x.i0, y.i1)) * (1.0 - x.t) + get(at(x.i1, y.i1)) * x.t;

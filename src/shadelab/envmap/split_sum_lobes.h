@@ -24,10 +24,12 @@
 // Table: SPLIT_SUM_LOBE_SIZE^2 texels as the DFG table's (dfg.h): x = N.V = (i + 0.5) / size, y = perceptual
 // roughness r = (j + 0.5) / size, alpha = r^2, read bilinearly between texel centres, clamped at the edges
 // but below the first row's centre, where it goes linearly to the mirror (r = 0: angle acos(N.V), roughness 0).
-// Computed once per process, at first use, by dfg_lobe_moments (relative tolerance 1e-5) and the inverse of
+// Computed row by row at first use, by dfg_lobe_moments (relative tolerance 1e-5) and the inverse of
 // spread(alpha) (log-log interpolation between 513 nodes, alpha in [1e-4, 1]).
 #pragma once
 
+#include <memory>
+#include <mutex>
 #include <vector>
 
 namespace shadelab {
@@ -50,9 +52,25 @@ struct SplitSumLobes {
 SplitSumLobes split_sum_lobes_at(double mu, double roughness);
 
 constexpr int split_sum_lobe_size = 32;
-struct SplitSumLobeTable {
-  int size = 0;
-  std::vector<SplitSumLobes> texels;  // row-major, row = roughness
+
+// The table, each row (a roughness, split_sum_lobe_size texels, about 0.1 s) computed at its first read, once,
+// by whichever thread reads it first (others reading it wait; no parallel work inside, so a reader inside a
+// TBB task cannot be handed a task that waits on the same row). A render reads the rows its materials'
+// roughness values need; all() computes the rest in parallel.
+class SplitSumLobeTable {
+ public:
+  explicit SplitSumLobeTable(int size = split_sum_lobe_size);
+  int size() const { return size_; }
+  // Texel (i, j): N.V column i, roughness row j, each in [0, size).
+  const SplitSumLobes& at(int i, int j) const;
+  // Every texel, row-major (row = roughness).
+  const std::vector<SplitSumLobes>& all() const;
+
+ private:
+  void fill_row(int j) const;
+  int size_;
+  mutable std::vector<SplitSumLobes> texels_;
+  mutable std::unique_ptr<std::once_flag[]> row_once_;
 };
 const SplitSumLobeTable& split_sum_lobe_table();
 

@@ -6,6 +6,7 @@
 #include "shadelab/envmap/split_sum_lobes.h"
 
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -137,8 +138,8 @@ TEST(SplitSumLobes, TheSpreadIsInvertedWithinAThousandth) {
 
 TEST(SplitSumLobes, TheTableHoldsItsTexelsAndReadsThemBilinearly) {
   const SplitSumLobeTable& t = split_sum_lobe_table();
-  ASSERT_EQ(t.size, split_sum_lobe_size);
-  const int n = t.size;
+  ASSERT_EQ(t.size(), split_sum_lobe_size);
+  const int n = t.size();
   for (const auto& [i, j] : {std::pair{0, 0}, std::pair{5, 20}, std::pair{31, 7}, std::pair{17, 31}}) {
     SCOPED_TRACE(testing::Message() << i << ", " << j);
     const double mu = (i + 0.5) / n, r = (j + 0.5) / n;
@@ -174,7 +175,8 @@ TEST(SplitSumLobes, BetweenTexelCentresTheTableIsCloseToTheMoments) {
   // centred on n): the read there is off by up to 0.19 rad and 0.08 in roughness, in a part whose weight B
   // is below 2% of A + B.
   const SplitSumLobeTable& t = split_sum_lobe_table();
-  const int n = t.size;
+  t.all();  // every row at once, in parallel (the reads below would compute them one by one)
+  const int n = t.size();
   double worst_angle = 0.0, worst_rough = 0.0;
   for (int j = 0; j + 1 < n; j += 3) {
     for (int i = 0; i + 2 < n; i += 3) {
@@ -195,6 +197,25 @@ TEST(SplitSumLobes, BetweenTexelCentresTheTableIsCloseToTheMoments) {
     worst_share = std::max(worst_share, v.b / (v.a + v.b));
   }
   EXPECT_LT(worst_share, 0.02);
+}
+
+TEST(SplitSumLobes, RowsComputedAtFirstReadAreTheSameFromManyThreads) {
+  // A small table of its own, read from every thread at once through the bilinear lookup (each read may be
+  // the first of its rows): every texel as split_sum_lobes_at computes it, whichever thread filled its row.
+  const SplitSumLobeTable t(6);
+  tbb::parallel_for(0, 600, [&](int k) {
+    const double mu = (k % 25 + 0.5) / 25.0, r = (k / 25 % 24 + 0.5) / 24.0;
+    const SplitSumLobes l = split_sum_lobes(t, mu, r);
+    EXPECT_TRUE(std::isfinite(l.a.angle) && std::isfinite(l.b.roughness));
+  });
+  for (int j = 0; j < 6; ++j) {
+    for (int i = 0; i < 6; ++i) {
+      const SplitSumLobes want = split_sum_lobes_at((i + 0.5) / 6.0, (j + 0.5) / 6.0);
+      EXPECT_EQ(t.at(i, j).a.angle, want.a.angle);
+      EXPECT_EQ(t.at(i, j).b.roughness, want.b.roughness);
+    }
+  }
+  EXPECT_EQ(t.all().size(), 36u);
 }
 
 TEST(SplitSumLobes, EachLobeIsReadWhereAndAsWideAsItsMoments) {

@@ -101,8 +101,7 @@ class GameShader {
     if (any_split_sum) {
       if (m_options.dfg_size < 1 || m_options.dfg_size > 4096) return make_error("dfg_size must be in [1, 4096]");
       m_dfg = &game_dfg_table(m_options.dfg_size);
-      // Computed here, on this thread (its quadrature runs in parallel), not at the first pixel's lookup,
-      // where the other render threads would wait on it.
+      // Its rows are computed as the pixels first read them (split_sum_lobes.h).
       if (m_options.split_sum_direction == GameSplitSumDirection::lobes) m_lobes = &split_sum_lobe_table();
     }
     m_sh += m_sh_lights;  // the environment's coefficients (zero without one) and the D3DX-style lights
