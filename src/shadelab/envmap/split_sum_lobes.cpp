@@ -115,10 +115,14 @@ SplitSumLobes split_sum_lobes(const SplitSumLobeTable& table, double mu, double 
   const int n = table.size();
   if (n < 1) return {};
   const TexelLerp x = texel_lerp(mu, n), y = texel_lerp(roughness, n);
-  const auto at = [&](int i, int j) { return table.at(i, j); };
+  // The four texels once (each read checks that its row is there), then the four channels between them.
+  const SplitSumLobes& t00 = table.at(x.i0, y.i0);
+  const SplitSumLobes& t10 = table.at(x.i1, y.i0);
+  const SplitSumLobes& t01 = table.at(x.i0, y.i1);
+  const SplitSumLobes& t11 = table.at(x.i1, y.i1);
   const auto lerp2 = [&](auto get) {
-    const double lo = get(at(x.i0, y.i0)) * (1.0 - x.t) + get(at(x.i1, y.i0)) * x.t;
-    const double hi = get(at(x.i0, y.i1)) * (1.0 - x.t) + get(at(x.i1, y.i1)) * x.t;
+    const double lo = get(t00) * (1.0 - x.t) + get(t10) * x.t;
+    const double hi = get(t01) * (1.0 - x.t) + get(t11) * x.t;
     return lo * (1.0 - y.t) + hi * y.t;
   };
   SplitSumLobes out;
@@ -127,14 +131,15 @@ SplitSumLobes split_sum_lobes(const SplitSumLobeTable& table, double mu, double 
   out.b.angle = lerp2([](const SplitSumLobes& s) { return s.b.angle; });
   out.b.roughness = lerp2([](const SplitSumLobes& s) { return s.b.roughness; });
   // Below the first row's centre, linear toward the mirror (r = 0: both lobes the delta at R, at the angle
-  // acos(N.V) from n, roughness 0) instead of clamping to the first row.
+  // acos(N.V) from n, roughness 0) instead of clamping to the first row. NaN reads as texel_lerp reads it: 0.
   const double r0 = 0.5 / n;
-  if (roughness < r0) {
-    const double w = std::max(roughness, 0.0) / r0;  // NaN reads the mirror
-    const double mirror_angle = std::acos(std::clamp(std::isfinite(mu) ? mu : 1.0, 0.0, 1.0));
+  const double r = std::isfinite(roughness) ? roughness : 0.0;
+  if (r < r0) {
+    const double w = std::max(r, 0.0) / r0;
+    const double mirror_angle = std::acos(std::clamp(std::isfinite(mu) ? mu : 0.0, 0.0, 1.0));
     for (SplitSumLobe* p : {&out.a, &out.b}) {
-      p->angle = mirror_angle + (p->angle - mirror_angle) * (std::isfinite(w) ? w : 0.0);
-      p->roughness *= std::isfinite(w) ? w : 0.0;
+      p->angle = mirror_angle + (p->angle - mirror_angle) * w;
+      p->roughness *= w;
     }
   }
   return out;
