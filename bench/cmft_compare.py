@@ -21,7 +21,8 @@ CPU time: user + system of each command (the children's rusage), the median of R
     CMFT=/path/to/cmftRelease /usr/bin/python3 bench/cmft_compare.py --build build/release
 
 --lobe ggx times shadelab's GGX chain instead (`bake specular --lobe ggx`, the default linear mapping:
-level i at perceptual roughness r_i = i/(M-1), alpha = r^2, its default 1024 samples) against the same
+level i at perceptual roughness r_i = i/(M-1), alpha = r^2, --ggx-method: its default lobe sum, or sampled with
+its default 1024 samples) against the same
 cmft Phong run (cmft has no GGX lobe), and measures each program against its own lobe: shadelab's level i
 against the brute-force sum of the n = v = r GGX lobe, weight D(h) (R.l) dOmega with
 D = alpha^2 / (pi ((R.h)^2 (alpha^2 - 1) + 1)^2) (Walter et al. 2007 eq. 33) and (R.h)^2 = (1 + R.l)/2,
@@ -130,6 +131,8 @@ def main():
     ap.add_argument("--gloss-bias", type=float, default=1.0)
     ap.add_argument("--lobe", choices=["phong", "ggx"], default="phong",
                     help="shadelab's chain: phong (cmft's lobe, default) or ggx (see above)")
+    ap.add_argument("--ggx-method", choices=["sum", "sampled"], default="sum",
+                    help="--lobe ggx: shadelab's --method (default sum, its default)")
     args = ap.parse_args()
     if not args.cmft or not Path(args.cmft).exists():
         print("cmft_compare: cmft not found (set CMFT or --cmft); nothing measured")
@@ -147,7 +150,7 @@ def main():
                 "--gloss-scale", str(args.gloss_scale), "--gloss-bias", str(args.gloss_bias), "--out", f"{tmp}/ours.ktx"]
         if args.lobe == "ggx":
             ours = [shadelab, "bake", "specular", cross, "--lobe", "ggx", "--size", str(args.size), "--no-exr-faces",
-                    "--format", "rgba32f", "--out", f"{tmp}/ours.ktx"]
+                    "--format", "rgba32f", "--method", args.ggx_method, "--out", f"{tmp}/ours.ktx"]
         theirs = [args.cmft, "--input", cube, "--filter", "radiance", "--srcFaceSize", "0", "--excludeBase", "false",
                   "--mipCount", str(mips), "--glossScale", str(args.gloss_scale), "--glossBias", str(args.gloss_bias),
                   "--lightingModel", "phong", "--dstFaceSize", str(args.size), "--numCpuProcessingThreads", "2",
@@ -166,7 +169,8 @@ def main():
     radiance = inp.reshape(-1, 3)
     rng = np.random.default_rng(15)
     print(f"cmft_compare: {Path(args.hdri).name}, 6 x {args.size}^2 rgba32f in and out, {mips} levels, "
-          f"{args.samples} texels per level against the brute-force lobe sum (float64); shadelab's lobe: {args.lobe}")
+          f"{args.samples} texels per level against the brute-force lobe sum (float64); shadelab's lobe: {args.lobe}"
+          + (f" --method {args.ggx_method}" if args.lobe == "ggx" else ""))
     print(f"{'level':>5} {'face':>5} {'exponent':>9} {'shadelab mean':>14} {'cmft mean':>10} {'shadelab max':>13} "
           f"{'cmft max':>9}  lower")
     all_lower = True

@@ -36,7 +36,11 @@ CubeMap environment_cube_at(const Image& img, const std::string& input, int size
 
 // The GGX mip chain of `env` (level 0 = env) and the record of its roughness-to-mip mapping that goes into a
 // KTX 2 file's shadelab.mip_mapping, `bake specular --json` and the `bake ibl` manifest.
-GgxPrefilteredCube bake_ggx_chain(const CubeMap& env, int levels, GgxRoughnessMapping mapping, int samples, bool progress);
+GgxPrefilteredCube bake_ggx_chain(const CubeMap& env, int levels, GgxRoughnessMapping mapping, GgxFilterMethod method, int samples,
+                                  bool progress);
+// --method NAME of the GGX bakes: sum (the default) or sampled; --samples given without --method means sampled
+// (as before --method existed), with --method sum it is refused. UsageError naming the option otherwise.
+GgxFilterMethod ggx_method_option(const std::string& name, bool method_given, bool samples_given);
 nlohmann::json ggx_mip_mapping_json(const GgxPrefilteredCube& chain);
 
 // The JSON `bake sh` prints (and writes with --out) for SH9 radiance coefficients `sh`.

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <set>
 #include <string>
 
@@ -80,9 +81,10 @@ TEST(CliIbl, GgxConstantStaysConstantAndTheMappingReadsBack) {
   for (const std::string mapping : {"linear", "filament"}) {
     SCOPED_TRACE(mapping);
     const fs::path out = temp_dir() / ("ggx_" + mapping + ".ktx2");
-    const std::string mapping_arg = mapping == "linear" ? "" : " --mapping filament";  // linear is the default
-    const auto j = json_of(run("bake specular " + constant_hdr().string() + " --lobe ggx --size 16 --samples 128" +
-                               mapping_arg + " --format rgba32f --no-exr-faces --out " + out.string() + " --json"));
+    // linear is the default mapping, sum the default method; --samples alone means --method sampled.
+    const std::string args = mapping == "linear" ? "" : " --mapping filament --samples 128";
+    const auto j = json_of(run("bake specular " + constant_hdr().string() + " --lobe ggx --size 16" + args +
+                               " --format rgba32f --no-exr-faces --out " + out.string() + " --json"));
     const int levels = 5;
     EXPECT_EQ(j["levels"], levels);
     EXPECT_EQ(j["mapping"], mapping);
@@ -111,6 +113,16 @@ TEST(CliIbl, GgxConstantStaysConstantAndTheMappingReadsBack) {
       EXPECT_NEAR(kv["roughness"][i].get<double>(), mapping == "linear" ? t : 1.0 - std::sqrt(1.0 - t), 1e-12) << i;
     }
     EXPECT_EQ(kv, j["mip_mapping"]);
+    // How each level was made: sum sums the faces of 16 and below exactly; sampled with 128 samples exactly
+    // where 3 n^2 <= 128 (faces 4, 2, 1) and samples face 8.
+    const bool sum = mapping == "linear";
+    EXPECT_EQ(kv["filter"], sum ? "sum" : "sampled");
+    EXPECT_EQ(j["method"], sum ? "sum" : "sampled");
+    EXPECT_EQ(kv["samples"], sum ? 0 : 128);
+    EXPECT_EQ(j["samples"], sum ? 0 : 128);
+    const nlohmann::json methods = sum ? nlohmann::json{"input", "exact", "exact", "exact", "exact"}
+                                       : nlohmann::json{"input", "sampled", "exact", "exact", "exact"};
+    EXPECT_EQ(kv["level_methods"], methods);
     EXPECT_NE(k["keyValue"]["shadelab.cube_convention"].get<std::string>().find("+X, -X, +Y, -Y, +Z, -Z"), std::string::npos);
   }
   // DDS holds no metadata: --json says the mapping is recorded there only.
@@ -118,6 +130,31 @@ TEST(CliIbl, GgxConstantStaysConstantAndTheMappingReadsBack) {
                              (temp_dir() / "ggx.dds").string() + " --json"));
   EXPECT_NE(d["mip_mapping_recorded_in"].get<std::string>().find("only here"), std::string::npos);
   EXPECT_EQ(d["mip_mapping"]["mapping"], "linear");
+}
+
+TEST(CliIbl, GgxNearFarLevelKeepsAConstant) {
+  // At --size 128 the default method sums face 64 (r = 0.5) near and far (n^2 N^2 > 2^24): mid cells of 4 x 4
+  // texels, coarse of 16 x 16, the near field 86 degrees (3 lobe widths); a constant stays constant through
+  // it (its cells' centroids are their centres, and the fields partition the sphere).
+  const fs::path out = temp_dir() / "ggx_near_far.ktx2";
+  const auto j = json_of(run("bake specular " + constant_hdr().string() + " --lobe ggx --size 128 --levels 3 --format rgba32f "
+                             "--no-exr-faces --out " + out.string() + " --json"));
+  EXPECT_EQ(j["mip_mapping"]["level_methods"], (nlohmann::json{"input", "near-far", "exact"}));
+  EXPECT_EQ(j["mip_mapping"]["far_block"], 4);
+  EXPECT_EQ(j["mip_mapping"]["coarse_block"], 16);
+  ASSERT_EQ(j["mip_mapping"]["near_angle_degrees"].size(), 3u);
+  // near_angle = max(near_cells 2 B / N, 3 lobe widths 2 alpha) = max(12 x 8 / 128, 3 x 2 x 0.25) rad.
+  EXPECT_NEAR(j["mip_mapping"]["near_angle_degrees"][1].get<double>(), 1.5 * 180.0 / std::numbers::pi, 1e-9);
+  EXPECT_EQ(j["mip_mapping"]["near_angle_degrees"][2].get<double>(), 0.0);
+  std::string queries;
+  for (int f = 0; f < 6; ++f)
+    for (const int x : {0, 17, 40, 63}) queries += " 1:" + std::to_string(f) + ":" + std::to_string(x) + ":" + std::to_string(63 - x);
+  const auto k = ktx2_dump(out, queries);
+  EXPECT_TRUE(k["problems"].empty()) << k["problems"].dump();
+  ASSERT_EQ(k["texels"].size(), 24u);
+  for (const auto& t : k["texels"]) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(t["value"][c].get<double>(), 0.5, 0.5e-3) << t.dump();  // 0.1%
+  }
 }
 
 TEST(CliIbl, GgxBadOptionsNameTheOptionAndWriteNothing) {
@@ -135,6 +172,9 @@ TEST(CliIbl, GgxBadOptionsNameTheOptionAndWriteNothing) {
   refused("--lobe ggx --gloss-scale 5", "--gloss-scale does not apply to bake specular --lobe ggx");
   refused("--mapping filament", "--mapping does not apply to bake specular --lobe phong");
   refused("--samples 64", "--samples does not apply to bake specular --lobe phong");
+  refused("--method sum", "--method does not apply to bake specular --lobe phong");
+  refused("--lobe ggx --method exact", "--method: 'exact' is not one of sum | sampled");
+  refused("--lobe ggx --method sum --samples 64", "--samples does not apply to --method sum");
 }
 
 TEST(CliIbl, DfgKtx2ReadsBackWithKtxParseAndEqualsTheExr) {

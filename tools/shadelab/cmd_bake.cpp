@@ -12,7 +12,9 @@
 //
 // bake specular --lobe phong (default) prefilters normalized Phong lobes (prefilter.h); --lobe ggx the GGX
 // lobes of the split sum (prefilter_ggx.h), one perceptual roughness per level by --mapping linear|filament,
-// level 0 = the input at --size; the mapping goes into the KTX 2 key/value data (shadelab.mip_mapping) and
+// level 0 = the input at --size, by --method sum (default: the lobe summed over the input texels, exactly near R
+// and by cells far from it) or sampled (filtered importance sampling, --samples N; --samples alone implies it);
+// the mapping goes into the KTX 2 key/value data (shadelab.mip_mapping) and
 // --json (mip_mapping), the only record for .ktx, .dds and the EXR faces.
 #include <fmt/core.h>
 
@@ -24,6 +26,7 @@
 #include "bake_shared.h"
 #include "cli_common.h"
 #include "progress.h"
+#include "shadelab/core/constants.h"
 #include "shadelab/envmap/dds.h"
 #include "shadelab/envmap/irradiance.h"
 #include "shadelab/envmap/ktx.h"
@@ -66,7 +69,8 @@ struct BakeOptions {
   int levels = 0;                 // specular: --levels, the same as --mips
   std::string lobe = "phong";     // specular: phong | ggx
   std::string mapping = "linear";  // specular --lobe ggx: roughness-to-mip mapping
-  int samples = 1024;              // specular --lobe ggx: half vectors per texel
+  int samples = 1024;              // specular --lobe ggx --method sampled: half vectors per texel
+  std::string method = "sum";      // specular --lobe ggx: sum | sampled (GgxFilterMethod)
   std::string format = "rgba16f";  // texel format of .ktx2 / .ktx / .dds outputs
   double gloss_scale = 10.0;
   double gloss_bias = 1.0;
@@ -273,10 +277,12 @@ CubeMap environment_cube_at(const Image& img, const std::string& input, int size
   return env;
 }
 
-GgxPrefilteredCube bake_ggx_chain(const CubeMap& env, int levels, GgxRoughnessMapping mapping, int samples, bool progress) {
+GgxPrefilteredCube bake_ggx_chain(const CubeMap& env, int levels, GgxRoughnessMapping mapping, GgxFilterMethod method, int samples,
+                                  bool progress) {
   GgxPrefilterOptions p;
   p.levels = levels;
   p.mapping = mapping;
+  p.method = method;
   p.samples = samples;
   ProgressBar bar("specular", progress);
   p.progress = [&](double f) { bar.update(f); };
@@ -289,21 +295,53 @@ GgxPrefilteredCube bake_ggx_chain(const CubeMap& env, int levels, GgxRoughnessMa
   }
 }
 
+GgxFilterMethod ggx_method_option(const std::string& name, bool method_given, bool samples_given) {
+  if (!method_given) return samples_given ? GgxFilterMethod::sampled : GgxFilterMethod::sum;
+  if (name != "sum" && name != "sampled") throw UsageError("--method: '" + name + "' is not one of sum | sampled");
+  const GgxFilterMethod method = parse_ggx_filter_method(name);
+  if (method == GgxFilterMethod::sum && samples_given) {
+    throw UsageError("--samples does not apply to --method sum (it sums the lobe over the input texels, drawing no samples)");
+  }
+  return method;
+}
+
 nlohmann::json ggx_mip_mapping_json(const GgxPrefilteredCube& chain) {
-  nlohmann::json exact = nlohmann::json::array();  // the levels summed over every input texel instead of sampled
+  nlohmann::json exact = nlohmann::json::array();  // the levels summed over every input texel
+  nlohmann::json level_methods = nlohmann::json::array();
   for (std::size_t i = 0; i < chain.exact.size(); ++i) {
     if (chain.exact[i]) exact.push_back(i);
+    level_methods.push_back(ggx_level_method_name(chain.method[i]));
   }
-  return {{"lobe", "ggx"},
-          {"kernel", "GGX D(h) with alpha = r^2 (r the perceptual roughness), n = v = R (Karis 2013), normalized by "
-                     "the integral of D(h) max(R.l, 0): a constant stays constant"},
-          {"method", "filtered importance sampling (Krivanek & Colbert 2008), Hammersley half vectors"},
-          {"samples", chain.samples},
-          {"exact_levels", exact},
-          {"mapping", chain.mapping.name()},
-          {"formula", chain.mapping.formula()},
-          {"levels", chain.levels.size()},
-          {"roughness", chain.roughness}};
+  const bool sampled = chain.filter == GgxFilterMethod::sampled;
+  nlohmann::json j = {
+      {"lobe", "ggx"},
+      {"kernel", "GGX D(h) with alpha = r^2 (r the perceptual roughness), n = v = R (Karis 2013), normalized by "
+                 "the integral of D(h) max(R.l, 0): a constant stays constant"},
+      {"method", sampled ? "filtered importance sampling (Krivanek & Colbert 2008), Hammersley half vectors; exact sums on "
+                           "the levels of face n with 3 n^2 <= samples"
+                         : "the lobe summed over the input texels: exactly on the coarse levels; on the others exactly "
+                           "within near_angle of R, over cells of far_block^2 texels within mid_angle and of "
+                           "coarse_block^2 texels beyond (each cell's flux at its radiance centroid)"},
+      {"filter", ggx_filter_method_name(chain.filter)},
+      {"samples", chain.samples},
+      {"exact_levels", exact},
+      {"level_methods", level_methods},
+      {"mapping", chain.mapping.name()},
+      {"formula", chain.mapping.formula()},
+      {"levels", chain.levels.size()},
+      {"roughness", chain.roughness}};
+  if (chain.far_block > 0) {
+    nlohmann::json near = nlohmann::json::array(), mid = nlohmann::json::array();
+    for (std::size_t i = 0; i < chain.near_angle.size(); ++i) {
+      near.push_back(chain.near_angle[i] * 180.0 / pi);
+      mid.push_back(chain.mid_angle[i] * 180.0 / pi);
+    }
+    j["far_block"] = chain.far_block;
+    j["coarse_block"] = chain.coarse_block;
+    j["near_angle_degrees"] = near;  // per level, 0 where not near-far
+    j["mid_angle_degrees"] = mid;
+  }
+  return j;
 }
 
 namespace {
@@ -624,6 +662,7 @@ void run_specular(const BakeOptions& o) {
   if (o.lobe != "phong" && o.lobe != "ggx") throw UsageError("--lobe: '" + o.lobe + "' is not one of phong | ggx");
   const bool ggx = o.lobe == "ggx";
   GgxRoughnessMapping mapping = GgxRoughnessMapping::linear;
+  GgxFilterMethod method = GgxFilterMethod::sum;
   if (ggx) {
     refuse_options(o, "specular --lobe ggx", {"--gloss-scale", "--gloss-bias"},
                    "they set Phong exponents; --mapping maps GGX roughness to levels");
@@ -632,9 +671,10 @@ void run_specular(const BakeOptions& o) {
       throw UsageError("--mapping: '" + o.mapping + "' is not one of linear | filament");
     }
     mapping = parse_ggx_roughness_mapping(o.mapping);
+    method = ggx_method_option(o.method, o.has("--method"), o.has("--samples"));
     check_range("--samples", true, o.samples, 1, 1 << 20);
   } else {
-    refuse_options(o, "specular --lobe phong", {"--mapping", "--samples"}, "they apply to --lobe ggx");
+    refuse_options(o, "specular --lobe phong", {"--mapping", "--samples", "--method"}, "they apply to --lobe ggx");
   }
   const int size = o.has("--size") ? o.size : 128;
   if (!is_power_of_two(size) || size > 2048) throw UsageError(fmt::format("--size: {} is not a power of two in [1, 2048]", size));
@@ -679,7 +719,8 @@ void run_specular(const BakeOptions& o) {
   std::vector<double> exponents;
   std::vector<double> roughness;
   if (ggx) {
-    GgxPrefilteredCube chain = bake_ggx_chain(environment_cube_at(read_environment(o.input), o.input, size), mip_count, mapping, o.samples, o.progress);
+    GgxPrefilteredCube chain = bake_ggx_chain(environment_cube_at(read_environment(o.input), o.input, size), mip_count, mapping, method, o.samples,
+                                              o.progress);
     mip_mapping = ggx_mip_mapping_json(chain);
     roughness = chain.roughness;
     levels = std::move(chain.levels);
@@ -728,7 +769,8 @@ void run_specular(const BakeOptions& o) {
       j["lobe"] = "GGX D(h), alpha = r^2, n = v = R (Karis 2013 split sum)";
       j["mapping"] = o.mapping;
       j["roughness"] = roughness;
-      j["samples"] = o.samples;
+      j["samples"] = method == GgxFilterMethod::sampled ? o.samples : 0;
+      j["method"] = ggx_filter_method_name(method);
     } else {
       j["lobe"] = "normalized Phong (n+1)/(2pi) (R.L)^n";
       j["exponents"] = exponents;
@@ -822,7 +864,12 @@ void add_bake_command(CLI::App& app, Command& command) {
                       "--lobe ggx: roughness to level, linear (lod = r (L - 1), glTF-Sample-Viewer) or filament "
                       "(lod = r (2 - r) (L - 1))")
           ->capture_default_str();
-      sub->add_option("--samples", o->samples, "--lobe ggx: Hammersley half vectors per texel, in [1, 2^20]")
+      sub->add_option("--method", o->method,
+                      "--lobe ggx: sum (the lobe summed over the input, exact near R and by cells far from it) or "
+                      "sampled (filtered importance sampling)")
+          ->capture_default_str();
+      sub->add_option("--samples", o->samples, "--lobe ggx --method sampled: Hammersley half vectors per texel, in [1, 2^20] "
+                                               "(given alone, it implies --method sampled)")
           ->capture_default_str();
     }
     sub->callback([o, run, sub, &command] {

@@ -1,6 +1,6 @@
 // shadelab bake ibl INPUT --out-dir DIR [--size N] [--levels L] [--format F] [--container ktx2|dds]
-// [--mapping linear|filament] [--samples N] [--irradiance-size N] [--dfg-size N] [--multiscatter]
-// [--units game|radiometric] [--json]: everything an engine loads for split-sum image-based lighting, in one
+// [--mapping linear|filament] [--method sum|sampled] [--samples N] [--irradiance-size N] [--dfg-size N]
+// [--multiscatter] [--units game|radiometric] [--json]: everything an engine loads for split-sum image-based lighting, in one
 // directory, baked by the same code as the single commands:
 //   specular.ktx2|dds  the GGX prefiltered cube (bake specular --lobe ggx), level 0 = the input at --size
 //   irradiance.ktx2|dds the cosine-convolved irradiance cube (bake irradiance)
@@ -65,6 +65,7 @@ struct IblOptions {
   std::string container = "ktx2";
   std::string mapping = "linear";
   int samples = 1024;
+  std::string method = "sum";
   int irradiance_size = 32;
   int dfg_size = 64;
   bool multiscatter = false;
@@ -124,6 +125,7 @@ void run_ibl(const IblOptions& o) {
     throw UsageError("--mapping: '" + o.mapping + "' is not one of linear | filament");
   }
   const GgxRoughnessMapping mapping = parse_ggx_roughness_mapping(o.mapping);
+  const GgxFilterMethod method = ggx_method_option(o.method, o.has("--method"), o.has("--samples"));
   check_range("--samples", true, o.samples, 1, 1 << 20);
   check_range("--irradiance-size", true, o.irradiance_size, 1, 1024);
   check_range("--dfg-size", true, o.dfg_size, 1, 4096);
@@ -157,7 +159,7 @@ void run_ibl(const IblOptions& o) {
   work_begins();
   const Image img = read_environment(o.input);
   const GgxPrefilteredCube chain =
-      bake_ggx_chain(environment_cube_at(img, o.input, o.size), o.levels, mapping, o.samples, o.progress);
+      bake_ggx_chain(environment_cube_at(img, o.input, o.size), o.levels, mapping, method, o.samples, o.progress);
   const bool latlong = is_latlong_image(img);
   // As bake irradiance and bake sh: a lat-long over its own texels, a cross as its cube.
   const CubeMap irradiance = latlong ? irradiance_cube(img, o.irradiance_size, units)
@@ -305,7 +307,10 @@ void add_bake_ibl(CLI::App& app, Command& command) {
   sub->add_option("--container", o->container, "container of the cubes: ktx2 or dds")->capture_default_str();
   sub->add_option("--mapping", o->mapping, "roughness to level: linear (lod = r (L - 1)) or filament (lod = r (2 - r) (L - 1))")
       ->capture_default_str();
-  sub->add_option("--samples", o->samples, "GGX prefilter: Hammersley half vectors per texel")->capture_default_str();
+  sub->add_option("--method", o->method, "GGX prefilter: sum (the lobe summed over the input) or sampled (filtered "
+                                         "importance sampling)")->capture_default_str();
+  sub->add_option("--samples", o->samples, "GGX prefilter --method sampled: Hammersley half vectors per texel (given "
+                                           "alone, it implies --method sampled)")->capture_default_str();
   sub->add_option("--irradiance-size", o->irradiance_size, "face size of the irradiance cube")->capture_default_str();
   sub->add_option("--dfg-size", o->dfg_size, "DFG table size N (N x N; quadrature, ~2.7 s for 32 on 2 cores)")
       ->capture_default_str();

@@ -76,6 +76,28 @@ bool index_range(double q2, double q1, double q0, int n, int& lo, int& hi);
 // the cap in a ray, and the face-wide column range is kept. Narrows [lo, hi]; false if the row misses.
 bool row_range(double ra, double rb, double rc, double kappa, double tc, int n, int& lo, int& hi);
 
+// Texels lo..hi of one row of a face (row: the index of its first texel; rows[o]: image o's row, read from
+// planes[o]) added into the accumulators: weight K(r.p) dOmega_p for r[0]'s face-local direction (va, vb,
+// vc), 0 where d > d_max, summed against each image's texels.
+template <int K, int M, class Lobe>
+SHADELAB_INLINE void accumulate_row(const Input& in, const Lobe& lobe, const f8& va, const f8& vb, const f8& vc, float d_max,
+                                    std::size_t row, const std::size_t (&rows)[M], const float* (&planes)[M][3], int lo, int hi,
+                                    f8& acc_w, f8 (&acc)[M][3]) {
+  const f8 last = splat8(static_cast<float>(hi));
+  for (int x = lo; x <= hi; x += 8) {
+    const std::size_t i = row + static_cast<std::size_t>(x);
+    const f8 da = va - load8(in.a.data() + i), db = vb - load8(in.b.data() + i), dc = vc - load8(in.c.data() + i);
+    const f8 d = 0.5f * (da * da + db * db + dc * dc);  // 1 - r.w, without the cancellation of 1 - t
+    const i8 keep = (d <= d_max) & ((iota8() + static_cast<float>(x)) <= last);
+    const f8 wt = select(keep, lobe.template weight<K>(d) * load8(in.w.data() + i), splat8(0.0f));
+    acc_w += wt;
+    for (int o = 0; o < M; ++o) {
+      const std::size_t j = rows[o] + static_cast<std::size_t>(x);
+      for (int c = 0; c < 3; ++c) acc[o][c] += wt * load8(planes[o][c] + j);
+    }
+  }
+}
+
 // The lobe about r[0] and its M - 1 mirror images (M = 1 or 4): r[o] is the image of r[0] under the
 // reflections of axes[0] (o & 1) and axes[1] (o & 2). The weights are computed once, for r[0]'s cap, and
 // summed against each image's texels.
@@ -115,19 +137,7 @@ SHADELAB_INLINE void convolve_group(const Input& in, const Lobe& lobe, const Vec
       const std::size_t row = static_cast<std::size_t>(y) * nn;
       std::size_t rows[M];
       for (int o = 0; o < M; ++o) rows[o] = (part[o].flip_y ? nn - 1 - static_cast<std::size_t>(y) : static_cast<std::size_t>(y)) * nn;
-      const f8 last = splat8(static_cast<float>(hi));
-      for (int x = lo; x <= hi; x += 8) {
-        const std::size_t i = row + static_cast<std::size_t>(x);
-        const f8 da = va - load8(in.a.data() + i), db = vb - load8(in.b.data() + i), dc = vc - load8(in.c.data() + i);
-        const f8 d = 0.5f * (da * da + db * db + dc * dc);  // 1 - r.w, without the cancellation of 1 - t
-        const i8 keep = (d <= d_max) & ((iota8() + static_cast<float>(x)) <= last);
-        const f8 wt = select(keep, lobe.template weight<K>(d) * load8(in.w.data() + i), splat8(0.0f));
-        acc_w += wt;
-        for (int o = 0; o < M; ++o) {
-          const std::size_t j = rows[o] + static_cast<std::size_t>(x);
-          for (int c = 0; c < 3; ++c) acc[o][c] += wt * load8(planes[o][c] + j);
-        }
-      }
+      accumulate_row<K, M>(in, lobe, va, vb, vc, d_max, row, rows, planes, lo, hi, acc_w, acc);
       if constexpr (Lobe::row_sums_in_double) {
         // Each row's float lanes added into double totals: float sums over a row at most, not the whole cap.
         total_w += hsum_double(acc_w);

@@ -7,11 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "shadelab/core/constants.h"
 #include "shadelab/core/frame.h"
+#include "shadelab/envmap/lobe_near_far.h"
 #include "shadelab/envmap/lobe_sum.h"
 #include "shadelab/envmap/simd.h"
 #include "shadelab/kernels/kernels.h"
@@ -50,6 +52,23 @@ GgxRoughnessMapping parse_ggx_roughness_mapping(const std::string& name) {
   if (name == "linear") return GgxRoughnessMapping::linear;
   if (name == "filament") return GgxRoughnessMapping::filament;
   throw std::invalid_argument("mapping: unknown roughness-to-mip mapping '" + name + "' (linear, filament)");
+}
+
+GgxFilterMethod parse_ggx_filter_method(const std::string& name) {
+  if (name == "sum") return GgxFilterMethod::sum;
+  if (name == "sampled") return GgxFilterMethod::sampled;
+  throw std::invalid_argument("method: unknown GGX filter method '" + name + "' (sum, sampled)");
+}
+
+const char* ggx_filter_method_name(GgxFilterMethod method) { return method == GgxFilterMethod::sampled ? "sampled" : "sum"; }
+
+const char* ggx_level_method_name(GgxLevelMethod method) {
+  switch (method) {
+    case GgxLevelMethod::input: return "input";
+    case GgxLevelMethod::exact: return "exact";
+    case GgxLevelMethod::near_far: return "near-far";
+    default: return "sampled";
+  }
 }
 
 Rgb prefilter_ggx_brute_force(const CubeMap& radiance, const Vec3& r, double roughness) {
@@ -292,6 +311,18 @@ SHADELAB_TARGET_AVX2 void ggx_rows_avx2(const lobe_sum::LevelJob& job, const Ggx
 void ggx_rows_base(const lobe_sum::LevelJob& job, const GgxLobe& lobe, int begin, int end) {
   lobe_sum::convolve_rows_k<0>(job, lobe, begin, end);
 }
+SHADELAB_TARGET_AVX2 void ggx_near_far_avx2(const lobe_sum::NearFarJob& job, const GgxLobe& lobe, int begin, int end) {
+  lobe_sum::convolve_rows_near_far<0>(job, lobe, begin, end);
+}
+void ggx_near_far_base(const lobe_sum::NearFarJob& job, const GgxLobe& lobe, int begin, int end) {
+  lobe_sum::convolve_rows_near_far<0>(job, lobe, begin, end);
+}
+
+// GgxFilterMethod::sum: the levels summed exactly over every input texel (header: Method). Cost n^2 N^2 for a
+// level of face n: 2^24 is the level of face 16 of a 256 input, about 0.05 s of CPU.
+bool exact_sum_level(int n, int input_size) {
+  return input_size < 8 || static_cast<double>(n) * n * input_size * input_size <= 16777216.0;
+}
 
 }  // namespace
 
@@ -315,14 +346,26 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
   if (!std::isfinite(o.lod_bias) || o.lod_bias < 0.0) {
     throw std::invalid_argument("lod_bias: must be finite and >= 0");
   }
+  if (!std::isfinite(o.near_cells) || o.near_cells <= 0.0) {
+    throw std::invalid_argument("near_cells: must be finite and > 0");
+  }
+  if (!std::isfinite(o.coarse_cells) || o.coarse_cells <= 0.0) {
+    throw std::invalid_argument("coarse_cells: must be finite and > 0");
+  }
 
-  const GgxFilter filter(radiance, o.samples, o.lod_bias);
+  const bool sampled = o.method == GgxFilterMethod::sampled;
   const bool avx = simd::cpu_has_avx2_fma();
-  lobe_sum::Input input;  // the input in lobe_sum's planar form, made for the first exact level
+  lobe_sum::Input input;     // the input in lobe_sum's planar form, made for the first summed level
+  lobe_sum::FarInput cells, coarse;  // its mid and coarse cells, made for the first near-far level
+  const int block = std::max(4, size / 64);
+  const int coarse_block = size % (4 * block) == 0 ? 4 * block : block;
 
   GgxPrefilteredCube out;
   out.mapping = {o.mapping, levels};
-  out.samples = o.samples;
+  out.filter = o.method;
+  out.samples = sampled ? o.samples : 0;
+  // The sampled method's input pyramid, built only for it.
+  const std::optional<GgxFilter> filter = sampled ? std::optional<GgxFilter>(std::in_place, radiance, o.samples, o.lod_bias) : std::nullopt;
   // Work items: pairs of rows of a face (lobe_sum::level_items), exact or sampled.
   long long total_rows = 0;
   for (int i = 1; i < levels; ++i) total_rows += lobe_sum::level_items(std::max(1, size >> i));
@@ -331,23 +374,49 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
   out.levels.push_back(radiance);  // r_0 = 0: the delta lobe, the input itself
   out.roughness.push_back(out.mapping.roughness(0));
   out.exact.push_back(false);
+  out.method.push_back(GgxLevelMethod::input);
+  out.near_angle.push_back(0.0);
+  out.mid_angle.push_back(0.0);
   for (int i = 1; i < levels; ++i) {
     const int n = std::max(1, size >> i);
     const double r = out.mapping.roughness(i);
-    // Exact summation over the input where it costs about what the sampling does (header: Method): the
-    // lobe sum of prefilter_ggx_brute_force over every input texel, 8 at a time in float with each row's
-    // sums added in double, output texels in groups of four mirror images (lobe_sum.h).
-    const bool exact = exact_level(n, o.samples);
-    const std::vector<GgxFilter::Sample> samples = exact ? std::vector<GgxFilter::Sample>{} : filter.make_samples(r);
+    // Exact summation over the input (header: Method): the lobe sum of prefilter_ggx_brute_force over every
+    // input texel, 8 at a time in float with each row's sums added in double, output texels in groups of
+    // four mirror images (lobe_sum.h); or that sum near R and by cells far from it (lobe_near_far.h).
+    const bool exact = sampled ? exact_level(n, o.samples) : exact_sum_level(n, size);
+    const bool near_far = !sampled && !exact;
+    const std::vector<GgxFilter::Sample> samples = sampled && !exact ? filter->make_samples(r) : std::vector<GgxFilter::Sample>{};
     CubeMap level(n);
-    if (exact && input.cube == nullptr) input = lobe_sum::make_input(radiance);
+    if ((exact || near_far) && input.cube == nullptr) input = lobe_sum::make_input(radiance);
+    if (near_far && cells.n == 0) {
+      cells = lobe_sum::make_far_input(radiance, block);
+      coarse = lobe_sum::make_far_input(radiance, coarse_block);
+      out.far_block = block;
+      out.coarse_block = coarse_block;
+    }
+    // The fields' radii (header: Method): at least near_cells mid cells and 2 lobe widths; at least
+    // coarse_cells coarse cells, 8 lobe widths and a coarse cell beyond the near field (so that the near
+    // cells' coarse cells are refined). The lobe width 2 alpha: the angle from R where D falls to 1/4.
+    const double width = 2.0 * r * r;
+    const double near_angle = near_far ? std::max(o.near_cells * 2.0 * block / size, 3.0 * width) : 0.0;
+    const double mid_angle =
+        near_far ? std::max({o.coarse_cells * 2.0 * coarse_block / size, 8.0 * width, near_angle + 2.0 * coarse_block / size}) : 0.0;
     const lobe_sum::LevelJob job = lobe_sum::level_job(input, level, 0.0);
+    const lobe_sum::NearFarJob near_far_job{&input, &cells, &coarse, &level, near_angle, mid_angle};
     const GgxLobe lobe(r * r);
     const int rows = lobe_sum::level_items(n);
     const int chunk = std::max(1, rows / 20);
     for (int start = 0; start < rows; start += chunk) {
       const int end = std::min(rows, start + chunk);
       tbb::parallel_for(tbb::blocked_range<int>(start, end), [&](const tbb::blocked_range<int>& range) {
+        if (near_far) {
+          if (avx) {
+            ggx_near_far_avx2(near_far_job, lobe, range.begin(), range.end());
+          } else {
+            ggx_near_far_base(near_far_job, lobe, range.begin(), range.end());
+          }
+          return;
+        }
         if (exact) {
           if (avx) {
             ggx_rows_avx2(job, lobe, range.begin(), range.end());
@@ -363,13 +432,13 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
           const int face = item / h;
           const int y = item % h;
           if (n == 1) {
-            level.set(face, 0, 0, filter.eval(texel_direction(face, 0, 0, 1), samples));
+            level.set(face, 0, 0, filter->eval(texel_direction(face, 0, 0, 1), samples));
             continue;
           }
           const int axes[2] = {lobe_sum::face_axis_of_local(face, 0), lobe_sum::face_axis_of_local(face, 1)};
           for (int x = 0; x < h; ++x) {
             Rgb v[4];
-            filter.eval_mirrored(texel_direction(face, x, y, n), samples, axes, v);
+            filter->eval_mirrored(texel_direction(face, x, y, n), samples, axes, v);
             level.set(face, x, y, v[0]);
             level.set(face, n - 1 - x, y, v[1]);
             level.set(face, x, n - 1 - y, v[2]);
@@ -383,6 +452,9 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
     out.levels.push_back(std::move(level));
     out.roughness.push_back(r);
     out.exact.push_back(exact);
+    out.method.push_back(exact ? GgxLevelMethod::exact : near_far ? GgxLevelMethod::near_far : GgxLevelMethod::sampled);
+    out.near_angle.push_back(near_angle);
+    out.mid_angle.push_back(mid_angle);
   }
   return out;
 }

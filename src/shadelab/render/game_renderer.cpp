@@ -329,6 +329,7 @@ Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const
       const int m = options.specular_size;
       const CubeMap base = m == n ? cube : environment_cube(env, m, options.environment_supersample);
       GgxPrefilterOptions go;
+      go.method = options.ggx_method;
       go.samples = options.ggx_samples;
       try {
         out.specular_ggx = prefilter_ggx(base, go);

@@ -80,8 +80,10 @@ struct GameOptions {
   int environment_supersample = 8;
   int specular_size = 64;     // face size of the prefiltered cube's level 0
   GameGgxSpecular ggx_specular = GameGgxSpecular::phong;
-  int ggx_samples = 1024;     // Hammersley half vectors per texel of the GGX chain (prefilter_ggx.h): with
-                              // 1024 its faces of 16 and below are exact sums (3 n^2 <= samples)
+  // The GGX chain's method (prefilter_ggx.h): sum (every level of a 64 chain an exact sum) or sampled, with
+  // ggx_samples Hammersley half vectors per texel (with 1024 its faces of 16 and below are exact sums).
+  GgxFilterMethod ggx_method = GgxFilterMethod::sum;
+  int ggx_samples = 1024;
   int dfg_size = 64;          // the split sum's DFG table (dfg.h), baked once per process per size
   GameSplitSumDirection split_sum_direction = GameSplitSumDirection::lobes;
 };
@@ -110,7 +112,7 @@ Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const
 
 // render_game with the environment already baked: `baked` must be bake_game_environment(scene, o) for options
 // o that agree with `options` in every field the bake reads (environment_size, environment_supersample,
-// diffuse, specular_ambient, specular_size, ggx_specular, ggx_samples), so that several renders of one
+// diffuse, specular_ambient, specular_size, ggx_specular, ggx_method, ggx_samples), so that several renders of one
 // environment (ibl-error's rows, a sweep) bake it once. An error if `baked` lacks what `options` reads: an
 // environment while the scene has one, the irradiance cube for GameAmbient::irradiance_map, the Phong chain
 // with specular_ambient, the GGX chain for a split-sum material.
