@@ -18,7 +18,7 @@
 //   B x B input texels (B = max(4, N / 64)) within mid_angle, and over coarse cells of 4B x 4B beyond it,
 //   each cell's flux at its radiance centroid. With w = 2 alpha (the angle from R where D falls to 1/4):
 //   near_angle = max(near_cells x 2 B / N, 3 w), mid_angle = max(coarse_cells x 8 B / N, 8 w, near_angle +
-//   8 B / N) (2 B / N: a mid cell's angle at a face centre; defaults near_cells 12, coarse_cells 4: 10.7 and
+//   8 B / N) (2 B / N: a mid cell's angle at a face centre; defaults near_cells 12, coarse_cells 4: 21.5 and
 //   28.6 degrees at N = 256 for narrow lobes). A point source is exact wherever it lies; radiance spread
 //   over a cell errs by the lobe's curvature across the cell (lobe_near_far.h). Measured against the brute
 //   force in docs/envmap.md: 2e-5 to 1.5e-3 in the mean, at most 8.4e-3 (studio), on Blender's 8 HDRIs at N = 256.
