@@ -13,7 +13,8 @@
 //   former 4 x 4 bilinear point samples;
 // - irradiance_per_texel_sum/32: the per-texel sum over the same 6 x 256^2 input (the peer in this run);
 // - prefilter_chain: the Phong chain 256 .. 1 (9 levels) from 6 x 256^2, with its error against the brute
-//   force per level and the brute-force chain's time extrapolated from measured directions.
+//   force per level and the brute-force chain's time extrapolated from measured directions;
+// - prefilter_ggx_chain: the same for the GGX chain (the default lobe sum) against its brute force.
 //
 //   ./build/release/bench/envmap_bench     (or bench/run.sh for everything with the table)
 #include <benchmark/benchmark.h>
@@ -32,6 +33,7 @@
 #include "shadelab/envmap/irradiance.h"
 #include "shadelab/envmap/latlong.h"
 #include "shadelab/envmap/prefilter.h"
+#include "shadelab/envmap/prefilter_ggx.h"
 #include "shadelab/envmap/sh.h"
 #include "shadelab/envmap/simd.h"
 #include "shadelab/image/image_io.h"
@@ -242,38 +244,49 @@ struct ChainCheck {
   std::vector<double> max_err, mean_err;
   double brute_seconds = 0.0;
 };
-const ChainCheck& chain_check(const PrefilteredCube& p, const CubeMap& c) {
-  static const ChainCheck check = [&] {
-    ChainCheck k;
-    for (std::size_t i = 0; i < p.levels.size(); ++i) {
-      const CubeMap& level = p.levels[i];
-      constexpr int samples = 48;
-      std::vector<double> err(samples);
-      tbb::parallel_for(0, samples, [&](int j) {
-        const int f = j % 6, x = (j * 7 + 3) % level.size, y = (j * 11 + 5) % level.size;
-        const Rgb ref = prefilter_brute_force(c, texel_direction(f, x, y, level.size), p.exponents[i]);
-        err[static_cast<std::size_t>(j)] = std::abs(level.texel(f, x, y).g - ref.g) / ref.g;
-      });
-      double mx = 0.0, mean = 0.0;
-      for (double e : err) {
-        mx = std::max(mx, e);
-        mean += e / samples;
-      }
-      k.max_err.push_back(mx);
-      k.mean_err.push_back(mean);
-      constexpr int timed = 16;
-      std::vector<Rgb> sink(timed);
-      const auto t0 = std::chrono::steady_clock::now();
-      tbb::parallel_for(0, timed, [&](int j) {
-        sink[static_cast<std::size_t>(j)] = prefilter_brute_force(c, texel_direction(j % 6, j % level.size, (3 * j) % level.size, level.size), p.exponents[i]);
-      });
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      benchmark::DoNotOptimize(sink.data());
-      k.brute_seconds += s / timed * 6.0 * level.size * level.size;
+// Levels first .. of `levels` against ref(i, direction) (the brute force of level i) at 48 spread texels per
+// level, and the brute force's time extrapolated from 16 directions per level.
+template <class Ref>
+ChainCheck check_chain(const std::vector<CubeMap>& levels, std::size_t first, const Ref& ref) {
+  ChainCheck k;
+  for (std::size_t i = first; i < levels.size(); ++i) {
+    const CubeMap& level = levels[i];
+    constexpr int samples = 48;
+    std::vector<double> err(samples);
+    tbb::parallel_for(0, samples, [&](int j) {
+      const int f = j % 6, x = (j * 7 + 3) % level.size, y = (j * 11 + 5) % level.size;
+      const Rgb want = ref(i, texel_direction(f, x, y, level.size));
+      err[static_cast<std::size_t>(j)] = std::abs(level.texel(f, x, y).g - want.g) / want.g;
+    });
+    double mx = 0.0, mean = 0.0;
+    for (double e : err) {
+      mx = std::max(mx, e);
+      mean += e / samples;
     }
-    return k;
-  }();
-  return check;
+    k.max_err.push_back(mx);
+    k.mean_err.push_back(mean);
+    constexpr int timed = 16;
+    std::vector<Rgb> sink(timed);
+    const auto t0 = std::chrono::steady_clock::now();
+    tbb::parallel_for(0, timed, [&](int j) {
+      sink[static_cast<std::size_t>(j)] = ref(i, texel_direction(j % 6, j % level.size, (3 * j) % level.size, level.size));
+    });
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    benchmark::DoNotOptimize(sink.data());
+    k.brute_seconds += s / timed * 6.0 * level.size * level.size;
+  }
+  return k;
+}
+
+void report_chain(benchmark::State& state, const ChainCheck& k, std::size_t first) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < k.max_err.size(); ++i) {
+    state.counters["max_err_" + std::to_string(first + i)] = k.max_err[i];
+    state.counters["mean_err_" + std::to_string(first + i)] = k.mean_err[i];
+    worst = std::max(worst, k.max_err[i]);
+  }
+  state.counters["max_err"] = worst;
+  state.counters["brute_force_chain_ms"] = 1e3 * k.brute_seconds;
 }
 
 void prefilter_chain(benchmark::State& state) {
@@ -289,17 +302,26 @@ void prefilter_chain(benchmark::State& state) {
     }
     last = std::move(p).value();
   }
-  const ChainCheck& k = chain_check(*last, c);
-  double worst = 0.0;
-  for (std::size_t i = 0; i < k.max_err.size(); ++i) {
-    state.counters["max_err_" + std::to_string(i)] = k.max_err[i];
-    state.counters["mean_err_" + std::to_string(i)] = k.mean_err[i];
-    worst = std::max(worst, k.max_err[i]);
-  }
-  state.counters["max_err"] = worst;
-  state.counters["brute_force_chain_ms"] = 1e3 * k.brute_seconds;
+  static const ChainCheck k = check_chain(last->levels, 0, [&](std::size_t i, const Vec3& r) {
+    return prefilter_brute_force(c, r, last->exponents[i]);
+  });
+  report_chain(state, k, 0);
 }
 BENCHMARK(prefilter_chain)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+// The GGX chain 256 .. 1 (9 levels, the default lobe sum: faces 128, 64, 32 near-far, 16 .. 1 exact) from
+// the same 6 x 256^2 input, against prefilter_ggx_brute_force (double, every texel) from level 1 (level 0 is
+// the input): the same counters as prefilter_chain.
+void prefilter_ggx_chain(benchmark::State& state) {
+  const CubeMap& c = hdri_cube();
+  std::optional<GgxPrefilteredCube> last;
+  for (auto _ : state) last = prefilter_ggx(c, GgxPrefilterOptions{});
+  static const ChainCheck k = check_chain(last->levels, 1, [&](std::size_t i, const Vec3& r) {
+    return prefilter_ggx_brute_force(c, r, last->roughness[i]);
+  });
+  report_chain(state, k, 1);
+}
+BENCHMARK(prefilter_ggx_chain)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
 
