@@ -297,8 +297,12 @@ GgxPrefilteredCube bake_ggx_chain(const CubeMap& env, int levels, GgxRoughnessMa
 
 GgxFilterMethod ggx_method_option(const std::string& name, bool method_given, bool samples_given) {
   if (!method_given) return samples_given ? GgxFilterMethod::sampled : GgxFilterMethod::sum;
-  if (name != "sum" && name != "sampled") throw UsageError("--method: '" + name + "' is not one of sum | sampled");
-  const GgxFilterMethod method = parse_ggx_filter_method(name);
+  GgxFilterMethod method = GgxFilterMethod::sum;
+  try {
+    method = parse_ggx_filter_method(name);
+  } catch (const std::invalid_argument&) {
+    throw UsageError("--method: '" + name + "' is not one of sum | sampled");
+  }
   if (method == GgxFilterMethod::sum && samples_given) {
     throw UsageError("--samples does not apply to --method sum (it sums the lobe over the input texels, drawing no samples)");
   }

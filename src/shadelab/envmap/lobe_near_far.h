@@ -57,7 +57,7 @@ template <int M>
 struct FarPlanes {
   const float* flux[M][3];
   const float* cen[M][3];
-  bool flip_y[M];
+  Partner part[M];
 };
 
 template <int M>
@@ -71,7 +71,7 @@ SHADELAB_INLINE FarPlanes<M> far_planes(const FarInput& far, const Partner (&par
       p.flux[o][c] = fsrc[static_cast<std::size_t>(c)].data();
       p.cen[o][c] = csrc[static_cast<std::size_t>(c)].data();
     }
-    p.flip_y[o] = part[o].flip_y;
+    p.part[o] = part[o];
   }
   return p;
 }
@@ -85,7 +85,7 @@ SHADELAB_INLINE void accumulate_far_row(const FarInput& far, const FarPlanes<M>&
   const auto nc = static_cast<std::size_t>(far.n);
   const std::size_t row = static_cast<std::size_t>(y) * nc;
   std::size_t rows[M];
-  for (int o = 0; o < M; ++o) rows[o] = (p.flip_y[o] ? nc - 1 - static_cast<std::size_t>(y) : static_cast<std::size_t>(y)) * nc;
+  image_rows<M>(p.part, static_cast<std::size_t>(y), nc, rows);
   const f8 last = splat8(static_cast<float>(hi));
   const f8 near_lo = splat8(static_cast<float>(ex_lo)), near_hi = splat8(static_cast<float>(ex_hi));
   for (int x = lo; x <= hi; x += 8) {
@@ -144,14 +144,9 @@ SHADELAB_INLINE void convolve_group_near_far(const Input& in, const FarInput& mi
     const f8 va = splat8(static_cast<float>(ra)), vb = splat8(static_cast<float>(rb)), vc = splat8(static_cast<float>(rc));
     Partner part[M];
     const float* planes[M][3];
+    group_images<M>(in, f, axes, part, planes);
     f8 sa[M], sb[M];  // r's local a and b as each image's centroids are read (negated where the image flips)
     for (int o = 0; o < M; ++o) {
-      part[o].face = f;
-      if (o & 1) part[o] = reflect(axes[0], part[o]);
-      if (o & 2) part[o] = reflect(axes[1], part[o]);
-      const auto g = static_cast<std::size_t>(part[o].face);
-      const auto& src = part[o].flip_x ? in.rgb_reversed[g] : in.rgb[g];
-      for (int c = 0; c < 3; ++c) planes[o][c] = src[static_cast<std::size_t>(c)].data();
       sa[o] = part[o].flip_x ? -va : va;
       sb[o] = part[o].flip_y ? -vb : vb;
     }
@@ -179,7 +174,7 @@ SHADELAB_INLINE void convolve_group_near_far(const Input& in, const FarInput& mi
           for (int yy = y * block; yy < (y + 1) * block; ++yy) {
             const std::size_t row = static_cast<std::size_t>(yy) * nn;
             std::size_t rows[M];
-            for (int o = 0; o < M; ++o) rows[o] = (part[o].flip_y ? nn - 1 - static_cast<std::size_t>(yy) : static_cast<std::size_t>(yy)) * nn;
+            image_rows<M>(part, static_cast<std::size_t>(yy), nn, rows);
             accumulate_row<K, M>(in, lobe, va, vb, vc, 1.0f, row, rows, planes, x0 * block, x1 * block + block - 1, acc_w, acc);
           }
         }

@@ -98,6 +98,26 @@ SHADELAB_INLINE void accumulate_row(const Input& in, const Lobe& lobe, const f8&
   }
 }
 
+// Image o of face f's group (the reflection of axes[0] where o & 1, of axes[1] where o & 2: the face it
+// reads and its flips) and the input planes it reads (rows reversed where it flips x).
+template <int M>
+SHADELAB_INLINE void group_images(const Input& in, int f, const int (&axes)[2], Partner (&part)[M], const float* (&planes)[M][3]) {
+  for (int o = 0; o < M; ++o) {
+    part[o].face = f;
+    if (o & 1) part[o] = reflect(axes[0], part[o]);
+    if (o & 2) part[o] = reflect(axes[1], part[o]);
+    const auto g = static_cast<std::size_t>(part[o].face);
+    const auto& src = part[o].flip_x ? in.rgb_reversed[g] : in.rgb[g];
+    for (int c = 0; c < 3; ++c) planes[o][c] = src[static_cast<std::size_t>(c)].data();
+  }
+}
+
+// The first index of row y of each image in arrays of n x n (row y read as n - 1 - y where it flips y).
+template <int M>
+SHADELAB_INLINE void image_rows(const Partner (&part)[M], std::size_t y, std::size_t n, std::size_t (&rows)[M]) {
+  for (int o = 0; o < M; ++o) rows[o] = (part[o].flip_y ? n - 1 - y : y) * n;
+}
+
 // The lobe about r[0] and its M - 1 mirror images (M = 1 or 4): r[o] is the image of r[0] under the
 // reflections of axes[0] (o & 1) and axes[1] (o & 2). The weights are computed once, for r[0]'s cap, and
 // summed against each image's texels.
@@ -124,19 +144,13 @@ SHADELAB_INLINE void convolve_group(const Input& in, const Lobe& lobe, const Vec
     const f8 va = splat8(static_cast<float>(ra)), vb = splat8(static_cast<float>(rb)), vc = splat8(static_cast<float>(rc));
     Partner part[M];
     const float* planes[M][3];
-    for (int o = 0; o < M; ++o) {
-      part[o].face = f;
-      if (o & 1) part[o] = reflect(axes[0], part[o]);
-      if (o & 2) part[o] = reflect(axes[1], part[o]);
-      const auto& src = part[o].flip_x ? in.rgb_reversed[static_cast<std::size_t>(part[o].face)] : in.rgb[static_cast<std::size_t>(part[o].face)];
-      for (int c = 0; c < 3; ++c) planes[o][c] = src[static_cast<std::size_t>(c)].data();
-    }
+    group_images<M>(in, f, axes, part, planes);
     for (int y = y0; y <= y1; ++y) {
       int lo = x0, hi = x1;
       if (!row_range(ra, rb, rc, kappa, (2.0 * y + 1.0) / n - 1.0, n, lo, hi)) continue;
       const std::size_t row = static_cast<std::size_t>(y) * nn;
       std::size_t rows[M];
-      for (int o = 0; o < M; ++o) rows[o] = (part[o].flip_y ? nn - 1 - static_cast<std::size_t>(y) : static_cast<std::size_t>(y)) * nn;
+      image_rows<M>(part, static_cast<std::size_t>(y), nn, rows);
       accumulate_row<K, M>(in, lobe, va, vb, vc, d_max, row, rows, planes, lo, hi, acc_w, acc);
       if constexpr (Lobe::row_sums_in_double) {
         // Each row's float lanes added into double totals: float sums over a row at most, not the whole cap.
