@@ -132,122 +132,220 @@ void row_sums5_base(const float* rgb, const float* const g[5], int n, float out[
   row_sums5_impl(rgb, g, n, out, next);
 }
 
-// Texels per chunk of the cube projection (of each half row): its five expanded weight arrays (7.5 KiB)
-// stay in L1 while the six faces' chunks are folded and summed over them.
+// Texels per chunk of the cube projection: its five expanded weight arrays (7.5 KiB) stay in L1 while the
+// three face pairs' chunks are combined and summed over them.
 constexpr int cube_chunk = 128;
-constexpr int prefetch_ahead = 6;  // (face, chunk) items ahead, into L2: 6-12 measured 10% faster from memory than 1 into L1
+constexpr int prefetch_ahead = 3;  // (chunk, face pair) items ahead (6 KiB each), prefetched into L2
+
+// The cube kernel runs on 8 lanes (AVX2, or SSE2 halves) or on 16 (AVX-512: one zmm register per 16
+// floats, and 32 registers for the 24 accumulators of both passes at once): V<W> is the W-lane vector.
+typedef float f16 __attribute__((vector_size(64)));
+template <int W>
+struct Lanes;
+template <>
+struct Lanes<8> {
+  using V = f8;
+};
+template <>
+struct Lanes<16> {
+  using V = f16;
+};
+template <int W>
+using V = typename Lanes<W>::V;
+template <int W>
+SHADELAB_INLINE V<W> loadv(const float* p) {
+  V<W> v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+template <int W>
+SHADELAB_INLINE void storev(float* p, const V<W>& v) {
+  std::memcpy(p, &v, sizeof v);
+}
 
 // Expands the five weights g_k (w, w c, w c^2, w c sc, w c^2 sc) of texels [x0, x0 + count) of one face row
-// into g3 (count a multiple of 8): g3[k][3 i + ch] = g_k(x0 + i), 8 texels a step, the products computed in
+// into g3 (count a multiple of W): g3[k][3 i + ch] = g_k(x0 + i), W texels a step, the products computed in
 // float lane by lane (the same products as texel by texel) and spread to the interleaved layout by lane
-// shuffles.
+// shuffles (float j of a step takes lane j / 3).
+template <int W>
 SHADELAB_INLINE void expand_weights(const float* w, const float* c, const float* sc, int count, float* const g3[5]) {
-  for (int i = 0; i < count; i += 8) {
-    const f8 wv = load8(w + i), cv = load8(c + i), sv = load8(sc + i);
-    const f8 g1 = wv * cv;
-    const f8 g2 = g1 * cv;
-    const f8 v[5] = {wv, g1, g2, g1 * sv, g2 * sv};
+  for (int i = 0; i < count; i += W) {
+    const V<W> wv = loadv<W>(w + i), cv = loadv<W>(c + i), sv = loadv<W>(sc + i);
+    const V<W> g1 = wv * cv;
+    const V<W> g2 = g1 * cv;
+    const V<W> v[5] = {wv, g1, g2, g1 * sv, g2 * sv};
     for (int k = 0; k < 5; ++k) {
       float* out = g3[k] + 3 * i;
-      // __builtin_shufflevector (GCC >= 12 and clang): constant lane indices, 0-7 the first operand's.
-      store8(out, __builtin_shufflevector(v[k], v[k], 0, 0, 0, 1, 1, 1, 2, 2));
-      store8(out + 8, __builtin_shufflevector(v[k], v[k], 2, 3, 3, 3, 4, 4, 4, 5));
-      store8(out + 16, __builtin_shufflevector(v[k], v[k], 5, 5, 6, 6, 6, 7, 7, 7));
-    }
-  }
-}
-
-// The mirror fold of a face row: texel x and its mirror x' = n - 1 - x have sc' = -sc and the same w and c,
-// so g0, g1, g2 are even and g3, g4 odd, and sum_x L(x) g_k(x) over the row is sum over the left half of
-// g_k(x) (L(x) + L(x')) for k = 0, 1, 2 and g_k(x) (L(x) - L(x')) for k = 3, 4: half the multiply-adds
-// (the left texel's float weights serve both; the mirror's own differ from them by rounding only).
-// For `steps` blocks of 8 texels, block i at left + 24 i and its mirror texels, which lie reversed in the
-// 24 floats ending at mirror_end - 24 i: even = left + mirror and odd = left - mirror, texel by texel, the
-// mirror block reversed texel-wise (channels kept) by two-register lane shuffles, and each summed at once
-// against the chunk's expanded weights g3 into `ra` (lane l of accumulator (k, j) adds its products in
-// ascending i, as chunk_pass does). next_left / next_mirror_end: the chunk folded prefetch_ahead items
-// later (prefetched into L2), or nullptr.
-SHADELAB_INLINE void fold_accumulate(const float* left, const float* mirror_end, int steps, const float* const g3[5],
-                                     RowAccumulators& ra, const float* next_left, const float* next_mirror_end) {
-  // Float j of the reversed block is float 3 (7 - j / 3) + j % 3 of the mirror block (registers m0 m1 m2;
-  // shuffle index 0-7: the first operand's lanes, 8-15: the second's).
-  f8 acc[5][3];
-  for (int k = 0; k < 5; ++k)
-    for (int j = 0; j < 3; ++j) acc[k][j] = ra.acc[k][j];
-  for (int i = 0; i < steps; ++i) {
-    if (next_left != nullptr) {
-      __builtin_prefetch(next_left + 24 * i, 0, 1);
-      __builtin_prefetch(next_left + 24 * i + 16, 0, 1);
-      __builtin_prefetch(next_mirror_end - 24 * (i + 1), 0, 1);
-      __builtin_prefetch(next_mirror_end - 24 * (i + 1) + 16, 0, 1);
-    }
-    const float* l = left + 24 * i;
-    const float* m = mirror_end - 24 * (i + 1);
-    const f8 m0 = load8(m), m1 = load8(m + 8), m2 = load8(m + 16);
-    const f8 q[3] = {__builtin_shufflevector(m1, m2, 13, 14, 15, 10, 11, 12, 7, 8),
-                     __builtin_shufflevector(__builtin_shufflevector(m1, m2, 9, 4, 5, 6, 1, 2, 3, 0), m0, 0, 1, 2, 3, 4, 5, 6, 14),
-                     __builtin_shufflevector(m0, m1, 7, 8, 3, 4, 5, 0, 1, 2)};
-    for (int j = 0; j < 3; ++j) {
-      const f8 lj = load8(l + 8 * j);
-      const f8 even = lj + q[j], odd = lj - q[j];
-      for (int k = 0; k < 3; ++k) acc[k][j] += load8(g3[k] + 24 * i + 8 * j) * even;
-      for (int k = 3; k < 5; ++k) acc[k][j] += load8(g3[k] + 24 * i + 8 * j) * odd;
-    }
-  }
-  for (int k = 0; k < 5; ++k)
-    for (int j = 0; j < 3; ++j) ra.acc[k][j] = acc[k][j];
-}
-
-// One row y of all six faces: chunk by chunk over the left half, the weights expanded once, each face's
-// chunk folded with its mirror and summed over them; then each face's 15 sums, with the middle texels no
-// whole mirrored block covers summed texel by texel (weights from `middle`, expanded by x as in the row).
-// `next_row`: non-null when the next row (3 n floats further in each face) is this thread's too, so that the
-// prefetch may run ahead into it.
-SHADELAB_INLINE void cube_row_impl(const float* const faces[6], const float* w, const float* c, const float* sc, int n,
-                                   float* const chunk3[5], float* const middle3[5], float out[6][15],
-                                   const float* next_row) {
-  RowAccumulators ra[6] = {};
-  const int folded = n / 2 / 8 * 8;  // texels of each half summed through the fold
-  const int chunks = (folded + cube_chunk - 1) / cube_chunk;
-  for (int x0 = 0; x0 < folded; x0 += cube_chunk) {
-    const int count = std::min(cube_chunk, folded - x0);
-    expand_weights(w + x0, c + x0, sc + x0, count, chunk3);
-    for (int f = 0; f < 6; ++f) {
-      // The (face, chunk) folded prefetch_ahead items later, in this row or the next.
-      int q = (x0 / cube_chunk) * 6 + f + prefetch_ahead;
-      const float* next = nullptr;
-      int next_x0 = 0;
-      if (q < 6 * chunks) {
-        next = faces[q % 6] + 0;
-        next_x0 = q / 6 * cube_chunk;
-      } else if (next_row != nullptr && (q -= 6 * chunks) < 6 * chunks) {
-        next = faces[q % 6] + 3 * n;
-        next_x0 = q / 6 * cube_chunk;
+      // __builtin_shufflevector (GCC >= 12 and clang): constant lane indices.
+      if constexpr (W == 8) {
+        storev<8>(out, __builtin_shufflevector(v[k], v[k], 0, 0, 0, 1, 1, 1, 2, 2));
+        storev<8>(out + 8, __builtin_shufflevector(v[k], v[k], 2, 3, 3, 3, 4, 4, 4, 5));
+        storev<8>(out + 16, __builtin_shufflevector(v[k], v[k], 5, 5, 6, 6, 6, 7, 7, 7));
+      } else {
+        storev<16>(out, __builtin_shufflevector(v[k], v[k], 0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5));
+        storev<16>(out + 16, __builtin_shufflevector(v[k], v[k], 5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10));
+        storev<16>(out + 32, __builtin_shufflevector(v[k], v[k], 10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15, 15));
       }
-      fold_accumulate(faces[f] + 3 * x0, faces[f] + 3 * (n - x0), count / 8, chunk3, ra[f],
-                      next == nullptr ? nullptr : next + 3 * next_x0, next == nullptr ? nullptr : next + 3 * (n - next_x0));
     }
   }
-  for (int x = folded; x < n - folded; ++x) {
-    const float g1 = w[x] * c[x], g2 = g1 * c[x];
-    const float v[5] = {w[x], g1, g2, g1 * sc[x], g2 * sc[x]};
-    for (int k = 0; k < 5; ++k)
-      for (int ch = 0; ch < 3; ++ch) middle3[k][3 * x + ch] = v[k];
+}
+
+// The cube projection sums four texel rows at once: face f = 2 P and its opposite f' = f + 1 (a face pair)
+// in row y (top, t) and in row n - 1 - y (bottom, b). The four share every weight g_k (w, c and sc depend on
+// (x, y) only, and the two rows' tc differ in sign only), and at each x their combinations
+//   Ee = (f_t + f'_t) + (f_b + f'_b),  Eo = (f_t + f'_t) - (f_b + f'_b),
+//   Oe = (f_t - f'_t) + (f_b - f'_b),  Oo = (f_t - f'_t) - (f_b - f'_b)
+// carry all that the world moments need (pair_terms): a local moment even in the local axes the two faces
+// flip needs only E, an odd one only O; one with an odd power of tc only o, an even power only e. Of the 20
+// sums S_k(q) = sum_x g_k(x) q(x) each pair needs 8 (PairSums): 24 multiply-adds per 8 x 4 texels where one
+// row at a time takes 60, and no lane reversal (the four rows are read in the same direction).
+enum Combo : int { Ee = 0, Eo = 1, Oe = 2, Oo = 3 };
+struct PairSums {
+  int combo[8];  // the first four E combinations, the last four O
+  int k[8];
+};
+// The +-X and +-Z pairs flip local a and c and keep b; the +-Y pair flips b and c and keeps a (face_sign).
+constexpr PairSums pair_sums_xz = {{Ee, Ee, Ee, Eo, Oe, Oe, Oo, Oo}, {0, 2, 4, 1, 1, 3, 2, 4}};
+constexpr PairSums pair_sums_y = {{Ee, Ee, Ee, Eo, Oe, Oe, Oo, Oo}, {0, 2, 3, 2, 1, 4, 1, 4}};
+
+template <int W>
+struct PairAccumulators {
+  V<W> acc[8][3];
+};
+
+// Sums `steps` steps of W texels of the rows src (f_t, f'_t, f_b, f'_b at the chunk's first texel) against
+// the chunk's expanded weights g3 into sums [S0, S1) of PairSums (pass 0: [0, 4), the E sums; pass 1:
+// [4, 8), the O sums; [0, 8) both at once where 24 accumulators fit in registers): lane l of accumulator
+// (s, j) adds its products in ascending step, whatever the chunk size or the pass split. Float j of a step
+// has channel j mod 3, as the weights. `next`: the four rows of the item prefetch_ahead items later
+// (prefetched into L2 as this one is read: a chunk is too short a stream for the hardware prefetcher), or
+// nullptr.
+template <int W, PairSums S, int S0, int S1>
+SHADELAB_INLINE void pair_pass(const float* const src[4], int steps, const float* const g3[5], PairAccumulators<W>& pa,
+                               const float* const* next) {
+  constexpr int step = 3 * W;
+  V<W> acc[S1 - S0][3];
+  for (int s = S0; s < S1; ++s)
+    for (int j = 0; j < 3; ++j) acc[s - S0][j] = pa.acc[s][j];
+  for (int i = 0; i < steps; ++i) {
+    if (next != nullptr) {
+      for (int g = 0; g < 4; ++g)
+        for (int line = 0; line < step; line += 16) __builtin_prefetch(next[g] + step * i + line, 0, 1);
+    }
+    for (int j = 0; j < 3; ++j) {
+      const int o = step * i + W * j;
+      const V<W> a = loadv<W>(src[0] + o), b = loadv<W>(src[1] + o), c = loadv<W>(src[2] + o), d = loadv<W>(src[3] + o);
+      V<W> q[4];  // Combo order; the pass computes the ones it needs
+      if (S0 < 4) {
+        const V<W> t = a + b, u = c + d;
+        q[Ee] = t + u;
+        q[Eo] = t - u;
+      }
+      if (S1 > 4) {
+        const V<W> t = a - b, u = c - d;
+        q[Oe] = t + u;
+        q[Oo] = t - u;
+      }
+      for (int s = S0; s < S1; ++s) acc[s - S0][j] += loadv<W>(g3[S.k[s]] + o) * q[S.combo[s]];
+    }
   }
-  for (int f = 0; f < 6; ++f) finish_row(ra[f], faces[f], middle3, folded, n - folded, out[f]);
+  for (int s = S0; s < S1; ++s)
+    for (int j = 0; j < 3; ++j) pa.acc[s][j] = acc[s - S0][j];
 }
 
-SHADELAB_TARGET_AVX2 void cube_row_avx2(const float* const faces[6], const float* w, const float* c, const float* sc, int n,
-                                        float* const chunk3[5], float* const middle3[5], float out[6][15],
-                                        const float* next_row) {
-  cube_row_impl(faces, w, c, sc, n, chunk3, middle3, out, next_row);
-}
-void cube_row_base(const float* const faces[6], const float* w, const float* c, const float* sc, int n,
-                   float* const chunk3[5], float* const middle3[5], float out[6][15], const float* next_row) {
-  cube_row_impl(faces, w, c, sc, n, chunk3, middle3, out, next_row);
+// One row pair of the six faces (top[f], bottom[f]: row y and row n - 1 - y, or a zero row for the middle
+// row of an odd n): chunk by chunk, the weights expanded once and each face pair's chunk summed over them;
+// then out[P][s][ch], pair P's sum s (PairSums) of channel ch: the lanes added in ascending float index,
+// then the texels x >= n / W * W that no whole step covers, texel by texel. next_top / next_bottom: the
+// next row pair when it is this thread's too (the prefetch runs ahead into it), else nullptr. OnePass: both
+// passes at once (W = 16 under AVX-512; on 16 registers the 24 accumulators would spill).
+template <int W, bool OnePass>
+SHADELAB_INLINE void pair_rows_impl(const float* const top[6], const float* const bottom[6], const float* w, const float* c,
+                                    const float* sc, int n, float* const chunk3[5], float out[3][8][3],
+                                    const float* const* next_top, const float* const* next_bottom) {
+  PairAccumulators<W> pa[3] = {};
+  const int whole = n / W * W;
+  const int chunks = (whole + cube_chunk - 1) / cube_chunk;
+  for (int x0 = 0; x0 < whole; x0 += cube_chunk) {
+    const int count = std::min(cube_chunk, whole - x0);
+    expand_weights<W>(w + x0, c + x0, sc + x0, count, chunk3);
+    for (int p = 0; p < 3; ++p) {
+      const float* const src[4] = {top[2 * p] + 3 * x0, top[2 * p + 1] + 3 * x0, bottom[2 * p] + 3 * x0,
+                                   bottom[2 * p + 1] + 3 * x0};
+      int q = (x0 / cube_chunk) * 3 + p + prefetch_ahead;
+      const float* const* rows = nullptr;
+      if (q < 3 * chunks) {
+        rows = top;  // this row pair
+      } else if (next_top != nullptr && (q -= 3 * chunks) < 3 * chunks) {
+        rows = next_top;
+      }
+      const float* next[4] = {};
+      if (rows != nullptr) {
+        const float* const* rows_b = rows == top ? bottom : next_bottom;
+        const int np = q % 3, nx = 3 * (q / 3 * cube_chunk);
+        next[0] = rows[2 * np] + nx;
+        next[1] = rows[2 * np + 1] + nx;
+        next[2] = rows_b[2 * np] + nx;
+        next[3] = rows_b[2 * np + 1] + nx;
+      }
+      const float* const* pf = rows != nullptr ? next : nullptr;
+      const int steps = count / W;
+      if (OnePass) {
+        if (p == 1) {
+          pair_pass<W, pair_sums_y, 0, 8>(src, steps, chunk3, pa[p], pf);
+        } else {
+          pair_pass<W, pair_sums_xz, 0, 8>(src, steps, chunk3, pa[p], pf);
+        }
+      } else if (p == 1) {
+        pair_pass<W, pair_sums_y, 0, 4>(src, steps, chunk3, pa[p], pf);
+        pair_pass<W, pair_sums_y, 4, 8>(src, steps, chunk3, pa[p], nullptr);
+      } else {
+        pair_pass<W, pair_sums_xz, 0, 4>(src, steps, chunk3, pa[p], pf);
+        pair_pass<W, pair_sums_xz, 4, 8>(src, steps, chunk3, pa[p], nullptr);
+      }
+    }
+  }
+  for (int p = 0; p < 3; ++p) {
+    const PairSums& S = p == 1 ? pair_sums_y : pair_sums_xz;
+    for (int s = 0; s < 8; ++s) {
+      float lanes[3 * W];
+      for (int j = 0; j < 3; ++j) storev<W>(lanes + W * j, pa[p].acc[s][j]);
+      for (int ch = 0; ch < 3; ++ch) {
+        float sum = 0.0f;
+        for (int i = 0; i < W; ++i) sum += lanes[ch + 3 * i];
+        out[p][s][ch] = sum;
+      }
+    }
+    for (int x = whole; x < n; ++x) {
+      const float g1 = w[x] * c[x], g2 = g1 * c[x];
+      const float g[5] = {w[x], g1, g2, g1 * sc[x], g2 * sc[x]};
+      for (int ch = 0; ch < 3; ++ch) {
+        const int o = 3 * x + ch;
+        const float a = top[2 * p][o], b = top[2 * p + 1][o], cc = bottom[2 * p][o], d = bottom[2 * p + 1][o];
+        const float e_t = a + b, e_b = cc + d, o_t = a - b, o_b = cc - d;
+        const float q[4] = {e_t + e_b, e_t - e_b, o_t + o_b, o_t - o_b};
+        for (int s = 0; s < 8; ++s) out[p][s][ch] += g[S.k[s]] * q[S.combo[s]];
+      }
+    }
+  }
 }
 
-using RowSums5 = std::array<double, 15>;
+SHADELAB_TARGET_AVX2 void pair_rows_avx2(const float* const top[6], const float* const bottom[6], const float* w, const float* c,
+                                         const float* sc, int n, float* const chunk3[5], float out[3][8][3],
+                                         const float* const* next_top, const float* const* next_bottom) {
+  pair_rows_impl<8, false>(top, bottom, w, c, sc, n, chunk3, out, next_top, next_bottom);
+}
+SHADELAB_TARGET_AVX512 void pair_rows_avx512(const float* const top[6], const float* const bottom[6], const float* w,
+                                             const float* c, const float* sc, int n, float* const chunk3[5],
+                                             float out[3][8][3], const float* const* next_top,
+                                             const float* const* next_bottom) {
+  pair_rows_impl<16, true>(top, bottom, w, c, sc, n, chunk3, out, next_top, next_bottom);
+}
+void pair_rows_base(const float* const top[6], const float* const bottom[6], const float* w, const float* c, const float* sc,
+                    int n, float* const chunk3[5], float out[3][8][3], const float* const* next_top,
+                    const float* const* next_bottom) {
+  pair_rows_impl<8, false>(top, bottom, w, c, sc, n, chunk3, out, next_top, next_bottom);
+}
 
 // The nine SH9 coefficients from the ten second-order moments sum L w d_i d_j, sum L w d_i, sum L w
 // (per channel): index 0 = 1; 1, 2, 3 = x, y, z; 4 xy, 5 yz, 6 xz, 7 xx, 8 yy, 9 zz.
@@ -327,6 +425,82 @@ const FaceWeights& face_weights(int size) {
   return *entry;
 }
 
+// The coefficient of S_k in each world moment of one face row at tc (the local moments of project_sh9's
+// comment, mapped by the face's signed permutation): C[m][k], m the Moments index.
+using MomentCoefficients = std::array<std::array<double, 5>, 10>;
+MomentCoefficients face_moment_coefficients(int f, double tc) {
+  using K = std::array<double, 5>;
+  // Local: 1 = S0; a = S3, b = tc S1, c = S1; aa = S0 - (1 + tc^2) S2, ab = tc S4, ac = S4, bb = tc^2 S2,
+  // bc = tc S2, cc = S2.
+  const K first[3] = {{0, 0, 0, 1, 0}, {0, tc, 0, 0, 0}, {0, 1, 0, 0, 0}};
+  const K second[3][3] = {{K{1, 0, -(1.0 + tc * tc), 0, 0}, K{0, 0, 0, 0, tc}, K{0, 0, 0, 0, 1}},
+                          {K{0, 0, 0, 0, tc}, K{0, 0, tc * tc, 0, 0}, K{0, 0, tc, 0, 0}},
+                          {K{0, 0, 0, 0, 1}, K{0, 0, tc, 0, 0}, K{0, 0, 1, 0, 0}}};
+  auto scaled = [](K v, double s) {
+    for (double& x : v) x *= s;
+    return v;
+  };
+  const int* p = face_perm[f];
+  const double* sg = face_sign[f];
+  MomentCoefficients m{};
+  m[0] = K{1, 0, 0, 0, 0};
+  for (std::size_t i = 0; i < 3; ++i) m[1 + i] = scaled(first[p[i]], sg[i]);
+  m[4] = scaled(second[p[0]][p[1]], sg[0] * sg[1]);
+  m[5] = scaled(second[p[1]][p[2]], sg[1] * sg[2]);
+  m[6] = scaled(second[p[0]][p[2]], sg[0] * sg[2]);
+  m[7] = second[p[0]][p[0]];
+  m[8] = second[p[1]][p[1]];
+  m[9] = second[p[2]][p[2]];
+  return m;
+}
+
+// The world moments of a row pair of face pair P (faces 2P, 2P + 1; top row at tc, bottom at -tc) are
+// linear in its 8 sums: with f_t = (Ee + Eo + Oe + Oo)/4, f'_t = (Ee + Eo - Oe - Oo)/4, f_b = (Ee - Eo + Oe -
+// Oo)/4 and f'_b = (Ee - Eo - Oe + Oo)/4, the coefficient of S_k(q) in moment m is the sum over the four
+// rows of sign(row, q) C_row[m][k] / 4 (those of the 12 sums PairSums leaves out cancel exactly). Every
+// C_row entry is a polynomial of degree <= 2 in tc, so each coefficient is a + b tc + c tc^2, read off
+// exactly from tc = 0, 1, -1 (quarters of small integers) once; a row pair evaluates only the nonzero ones.
+struct PairTerm {
+  std::size_t m, s;  // moment, sum
+  double a, b, c;
+};
+using PairCoefficients = std::array<std::array<double, 8>, 10>;
+PairCoefficients pair_coefficients(int pair, double tc) {
+  const MomentCoefficients c[4] = {face_moment_coefficients(2 * pair, tc), face_moment_coefficients(2 * pair + 1, tc),
+                                   face_moment_coefficients(2 * pair, -tc), face_moment_coefficients(2 * pair + 1, -tc)};
+  constexpr double sign[4][4] = {{1, 1, 1, 1}, {1, 1, -1, -1}, {1, -1, 1, -1}, {1, -1, -1, 1}};  // [combo][row]
+  const PairSums& S = pair == 1 ? pair_sums_y : pair_sums_xz;
+  PairCoefficients out{};
+  for (std::size_t m = 0; m < 10; ++m)
+    for (std::size_t s = 0; s < 8; ++s) {
+      const auto q = static_cast<std::size_t>(S.combo[s]);
+      const auto k = static_cast<std::size_t>(S.k[s]);
+      for (std::size_t r = 0; r < 4; ++r) out[m][s] += 0.25 * sign[q][r] * c[r][m][k];
+    }
+  return out;
+}
+const std::array<std::vector<PairTerm>, 3>& pair_terms() {
+  static const std::array<std::vector<PairTerm>, 3> terms = [] {
+    std::array<std::vector<PairTerm>, 3> out;
+    for (int pair = 0; pair < 3; ++pair) {
+      const PairCoefficients c0 = pair_coefficients(pair, 0.0), cp = pair_coefficients(pair, 1.0),
+                             cm = pair_coefficients(pair, -1.0);
+      for (std::size_t m = 0; m < 10; ++m)
+        for (std::size_t s = 0; s < 8; ++s) {
+          const PairTerm t{m, s, c0[m][s], 0.5 * (cp[m][s] - cm[m][s]), 0.5 * (cp[m][s] + cm[m][s]) - c0[m][s]};
+          if (t.a != 0.0 || t.b != 0.0 || t.c != 0.0) out[static_cast<std::size_t>(pair)].push_back(t);
+        }
+    }
+    return out;
+  }();
+  return terms;
+}
+Moments pair_moments(const std::vector<PairTerm>& terms, double tc, const float sums[8][3]) {
+  Moments out{};
+  for (const PairTerm& t : terms) out[t.m] += Rgb{static_cast<double>(sums[t.s][0]), static_cast<double>(sums[t.s][1]), static_cast<double>(sums[t.s][2])} * (t.a + tc * (t.b + tc * t.c));
+  return out;
+}
+
 }  // namespace
 
 // The cube projection. In a face row (tc fixed) the local direction is (a, b, c) = (sc c, tc c, c), so every
@@ -334,62 +508,54 @@ const FaceWeights& face_weights(int size) {
 //   g0 = w, g1 = w c, g2 = w c^2, g3 = w c sc, g4 = w c^2 sc:
 //   sum w = S0, sum w a = S3, sum w b = tc S1, sum w c = S1, sum w ab = tc S4, sum w ac = S4, sum w bc = tc S2,
 //   sum w b^2 = tc^2 S2, sum w c^2 = S2, sum w a^2 = S0 - (1 + tc^2) S2 (a^2 + b^2 + c^2 = 1),
-// with S_k = sum L g_k. The weights depend on (x, y) only, so they are formed once per row and serve all
-// six faces; each face's world moments are its signed permutation of the local ones. Each row is summed
-// through its mirror fold (fold_accumulate): the left half's weights against L(x) +- L(n - 1 - x).
-Sh9 project_sh9(const CubeMap& cube) {
+// with S_k = sum L g_k. The weights depend on (x, y) only and are the same in row n - 1 - y, so they are
+// formed once per row pair and serve its twelve face rows, summed four at a time (pair_rows_impl); each
+// face's world moments are its signed permutation of the local ones (face_moment_coefficients).
+Sh9 project_sh9(const CubeMap& cube) { return detail::project_sh9_simd(cube, 2); }
+
+Sh9 detail::project_sh9_simd(const CubeMap& cube, int widest) {
   const int n = cube.size;
   const auto nn = static_cast<std::size_t>(n);
   const FaceWeights& fw = face_weights(n);
-  const bool avx = cpu_has_avx2_fma();
-  // Local moments per (row, face), summed afterwards in a fixed order: the result does not depend on how
-  // TBB splits the rows, so it is the same for any thread count.
-  std::vector<std::array<Moments, 6>> rows(nn);
-  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& range) {
-    // Expanded weights: one chunk's and the row's middle texels' (indexed by x as in the row; cube_row_impl).
-    const std::size_t chunk_stride = 3 * static_cast<std::size_t>(cube_chunk);
-    const std::size_t tail_stride = 3 * nn;
-    std::vector<float> g(5 * (chunk_stride + tail_stride));
-    float* const chunk3[5] = {g.data(), g.data() + chunk_stride, g.data() + 2 * chunk_stride, g.data() + 3 * chunk_stride,
-                              g.data() + 4 * chunk_stride};
-    float* const tail_base = g.data() + 5 * chunk_stride;
-    float* const tail3[5] = {tail_base, tail_base + tail_stride, tail_base + 2 * tail_stride, tail_base + 3 * tail_stride,
-                             tail_base + 4 * tail_stride};
-    for (int y = range.begin(); y != range.end(); ++y) {
-      const auto yy = static_cast<std::size_t>(y);
-      const float* w = fw.w.data() + yy * nn;
-      const float* c = fw.c.data() + yy * nn;
-      const float* faces[6];
-      for (std::size_t f = 0; f < 6; ++f) faces[f] = cube.faces[f].data.data() + yy * nn * 3;
-      const float* next_row = y + 1 < range.end() ? cube.faces[0].data.data() + (yy + 1) * nn * 3 : nullptr;
-      float sums[6][15];
-      if (avx) {
-        cube_row_avx2(faces, w, c, fw.sc.data(), n, chunk3, tail3, sums, next_row);
+  const bool avx = widest >= 1 && cpu_has_avx2_fma();
+  const bool avx512 = widest >= 2 && cpu_has_avx512();
+  const int pairs = (n + 1) / 2;
+  const std::array<std::vector<PairTerm>, 3>& terms = pair_terms();
+  // The middle row of an odd n pairs with a row of zeros (its tc is 0).
+  const std::vector<float> zero_row(3 * nn, 0.0f);
+  // World moments per (row pair, face pair), summed afterwards in a fixed order: the result does not depend
+  // on how TBB splits the row pairs, so it is the same for any thread count.
+  std::vector<std::array<Moments, 3>> rows(static_cast<std::size_t>(pairs));
+  tbb::parallel_for(tbb::blocked_range<int>(0, pairs), [&](const tbb::blocked_range<int>& range) {
+    std::vector<float> g(5 * 3 * static_cast<std::size_t>(cube_chunk));
+    float* const chunk3[5] = {g.data(), g.data() + 3 * cube_chunk, g.data() + 6 * cube_chunk, g.data() + 9 * cube_chunk,
+                              g.data() + 12 * cube_chunk};
+    auto row_pointers = [&](int p, const float* top[6], const float* bottom[6]) {
+      const int yb = n - 1 - p;
+      for (std::size_t f = 0; f < 6; ++f) {
+        const float* face = cube.faces[f].data.data();
+        top[f] = face + static_cast<std::size_t>(p) * nn * 3;
+        bottom[f] = yb == p ? zero_row.data() : face + static_cast<std::size_t>(yb) * nn * 3;
+      }
+    };
+    for (int p = range.begin(); p != range.end(); ++p) {
+      const auto pp = static_cast<std::size_t>(p);
+      const float *top[6], *bottom[6], *next_top[6], *next_bottom[6];
+      row_pointers(p, top, bottom);
+      const bool ahead = p + 1 < range.end();
+      if (ahead) row_pointers(p + 1, next_top, next_bottom);
+      const float* w = fw.w.data() + pp * nn;
+      const float* c = fw.c.data() + pp * nn;
+      float sums[3][8][3];
+      if (avx512) {
+        pair_rows_avx512(top, bottom, w, c, fw.sc.data(), n, chunk3, sums, ahead ? next_top : nullptr, ahead ? next_bottom : nullptr);
+      } else if (avx) {
+        pair_rows_avx2(top, bottom, w, c, fw.sc.data(), n, chunk3, sums, ahead ? next_top : nullptr, ahead ? next_bottom : nullptr);
       } else {
-        cube_row_base(faces, w, c, fw.sc.data(), n, chunk3, tail3, sums, next_row);
+        pair_rows_base(top, bottom, w, c, fw.sc.data(), n, chunk3, sums, ahead ? next_top : nullptr, ahead ? next_bottom : nullptr);
       }
-      const double tc = (2.0 * y + 1.0) / n - 1.0;
-      for (int f = 0; f < 6; ++f) {
-        const float* s = sums[f];
-        auto sum = [&](int k) { return Rgb{s[3 * k], s[3 * k + 1], s[3 * k + 2]}; };
-        const Rgb s0 = sum(0), s1 = sum(1), s2 = sum(2), s3 = sum(3), s4 = sum(4);
-        // Local moments: index 0 = 1, 1 a, 2 b, 3 c, then the products of local axes (i, j).
-        const Rgb first[3] = {s3, s1 * tc, s1};
-        const Rgb second[3][3] = {{s0 - s2 * (1.0 + tc * tc), s4 * tc, s4},
-                                  {s4 * tc, s2 * (tc * tc), s2 * tc},
-                                  {s4, s2 * tc, s2}};
-        Moments& m = rows[yy][static_cast<std::size_t>(f)];
-        const int* p = face_perm[f];
-        const double* sg = face_sign[f];
-        m[0] = s0;
-        for (int i = 0; i < 3; ++i) m[static_cast<std::size_t>(1 + i)] = first[p[i]] * sg[i];
-        m[4] = second[p[0]][p[1]] * (sg[0] * sg[1]);
-        m[5] = second[p[1]][p[2]] * (sg[1] * sg[2]);
-        m[6] = second[p[0]][p[2]] * (sg[0] * sg[2]);
-        m[7] = second[p[0]][p[0]];
-        m[8] = second[p[1]][p[1]];
-        m[9] = second[p[2]][p[2]];
-      }
+      const double tc = (2.0 * p + 1.0) / n - 1.0;
+      for (std::size_t pair = 0; pair < 3; ++pair) rows[pp][pair] = pair_moments(terms[pair], tc, sums[pair]);
     }
   });
   Moments total{};
@@ -435,7 +601,9 @@ Sh9 project_sh9(const Image& latlong) {
       } else {
         row_sums5_base(rgb, gk, w, s, next);
       }
-      auto sum = [&](int k) { return Rgb{s[3 * k], s[3 * k + 1], s[3 * k + 2]}; };
+      auto sum = [&](int k) {
+        return Rgb{static_cast<double>(s[3 * k]), static_cast<double>(s[3 * k + 1]), static_cast<double>(s[3 * k + 2])};
+      };
       const Rgb one = sum(0), cp = sum(1), sp = sum(2), c2 = sum(3), s2 = sum(4);
       // The ring's u integrals, from u1 = cos(pi (y + 1)/h) to u0 = cos(pi y/h).
       const double u0 = y == 0 ? 1.0 : std::cos(pi * y / h), u1 = y + 1 == h ? -1.0 : std::cos(pi * (y + 1) / h);

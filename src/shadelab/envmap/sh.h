@@ -65,6 +65,11 @@ BandFactors sh_window_factors(ShWindow window);
 
 // Projections. The cube-map one uses precomputed per-texel tables and a deterministic parallel reduction.
 Sh9 project_sh9(const CubeMap& cube);
+namespace detail {
+// project_sh9(cube) with its kernel limited to `widest` (0: baseline x86-64, 1: AVX2 + FMA, 2: AVX-512F;
+// each where the CPU has it), so that tests reach every wrapper on any machine.
+Sh9 project_sh9_simd(const CubeMap& cube, int widest);
+}  // namespace detail
 Sh9 project_sh9(const Image& latlong);
 // Of a function of direction, with an N x N cube of exact solid angles (for tests and analytic inputs).
 Sh9 project_sh9(const std::function<Rgb(const Vec3&)>& f, int size);

@@ -126,6 +126,61 @@ TEST(Sh9, SingleHotTexelMatchesTheAdditionTheorem) {
   }
 }
 
+TEST(Sh9, EveryTexelProjectsToItsBasisValues) {
+  // The cube projection sums a face with its opposite face and a row with its mirror row at once (sh.cpp):
+  // one hot texel anywhere must still project to L dOmega Y_i(d), with Y_i and dOmega computed here from
+  // the basis and the texel's own solid angle. Sizes: 11 (a middle row paired with zeros and texels past
+  // the last whole step of 8 or 16 lanes), 16 (whole steps only) and 21 (both), on every kernel wrapper
+  // the CPU has (baseline, AVX2, AVX-512).
+  for (const int widest : {0, 1, 2})
+  for (const int n : {11, 16, 21}) {
+    for (int f = 0; f < 6; ++f)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          if (n == 21 && (x + 2 * y + f) % 3 != 0) continue;  // a third of the largest size is enough
+          CubeMap cube(n);
+          cube.set(f, x, y, Rgb{100.0, 50.0, 25.0});
+          const Sh9 sh = detail::project_sh9_simd(cube, widest);
+          const ShBasis b = sh9_basis(texel_direction(f, x, y, n));
+          const double d_omega = cube_texel_solid_angle(x, y, n);
+          for (std::size_t i = 0; i < 9; ++i) {
+            const double want = 100.0 * d_omega * b[i];
+            ASSERT_NEAR(sh.c[i].r, want, 1e-5 * 100.0 * d_omega) << "wrapper " << widest << " n " << n << " face " << f << " x " << x << " y " << y << " i " << i;
+            ASSERT_NEAR(sh.c[i].b, 0.25 * want, 1e-5 * 25.0 * d_omega) << "n " << n << " face " << f << " x " << x << " y " << y;
+          }
+        }
+  }
+}
+
+TEST(Sh9, EveryKernelWrapperGivesTheSameProjection) {
+  // The wrappers sum in different lane orders (and the baseline without FMA), so they may differ in the
+  // last bits only: on a rough map at the benchmark's size, within 2e-6 of the largest coefficient. The
+  // reference is a float64 sum over the texels, computed here from the basis and the solid angles.
+  const int n = 512;
+  CubeMap cube(n);
+  std::uint32_t state = 12345u;
+  auto next = [&] { state = state * 1664525u + 1013904223u; return (state >> 8) * (1.0 / 16777216.0); };
+  for (int f = 0; f < 6; ++f)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) cube.set(f, x, y, Rgb{next() * 4.0, next(), 10.0 * next() * next()});
+  Sh9 exact;
+  for (int f = 0; f < 6; ++f)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const ShBasis b = sh9_basis(texel_direction(f, x, y, n));
+        const Rgb l = cube.texel(f, x, y) * cube_texel_solid_angle(x, y, n);
+        for (std::size_t i = 0; i < 9; ++i) exact.c[i] += l * b[i];
+      }
+  for (const int widest : {0, 1, 2}) {
+    const Sh9 got = detail::project_sh9_simd(cube, widest);
+    for (std::size_t i = 0; i < 9; ++i) {
+      EXPECT_NEAR(got.c[i].r, exact.c[i].r, 2e-6 * exact.c[0].r) << "wrapper " << widest << " i " << i;
+      EXPECT_NEAR(got.c[i].g, exact.c[i].g, 2e-6 * exact.c[0].g) << "wrapper " << widest << " i " << i;
+      EXPECT_NEAR(got.c[i].b, exact.c[i].b, 2e-6 * exact.c[0].b) << "wrapper " << widest << " i " << i;
+    }
+  }
+}
+
 TEST(Sh9, RotationIsExactAndIrradianceFollows) {
   // A band-limited function (degree <= 2), so the re-projection differs only by the quadrature error.
   const auto f = [](const Vec3& d) { return Rgb{1 + d.x + 2 * d.y * d.z, 0.5 + d.x * d.x - d.z, d.y}; };

@@ -28,6 +28,10 @@ typedef float f4 __attribute__((vector_size(16)));
 
 #define SHADELAB_INLINE [[gnu::always_inline]] inline
 #define SHADELAB_TARGET_AVX2 [[gnu::target("avx2,fma")]]
+// AVX-512F (with AVX2 + FMA) for kernels written on 16-lane vectors: a third wrapper, taken where the CPU
+// has it; its sums run in another lane order, so its results can differ from the 8-lane ones in the last
+// bits (a given machine always takes the same wrapper).
+#define SHADELAB_TARGET_AVX512 [[gnu::target("avx2,fma,avx512f")]]
 #define SHADELAB_INLINE_LAMBDA __attribute__((always_inline))
 
 inline bool cpu_has_avx2_fma() {
@@ -35,6 +39,10 @@ inline bool cpu_has_avx2_fma() {
   return has;
 }
 
+inline bool cpu_has_avx512() {
+  static const bool has = cpu_has_avx2_fma() && __builtin_cpu_supports("avx512f");
+  return has;
+}
 SHADELAB_INLINE f8 splat8(float v) { return f8{} + v; }
 SHADELAB_INLINE f4 splat4(float v) { return f4{} + v; }
 SHADELAB_INLINE f8 load8(const float* p) {
