@@ -7,6 +7,7 @@
 #include "shadelab/brdf/microfacet.h"
 #include "shadelab/brdf/phong.h"
 #include "shadelab/core/constants.h"
+#include "shadelab/core/text.h"
 
 namespace shadelab {
 
@@ -109,7 +110,7 @@ Result<ZooRow> zoo_row(std::string_view model, double n, const QuadratureOptions
   if (row == row_names.size()) {
     std::string list;
     for (auto name : row_names) list += (list.empty() ? "" : ", ") + std::string(name);
-    return make_error("zoo: unknown model '" + std::string(model) + "' (rows: " + list + ")");
+    return make_error("zoo: unknown model '" + printable(model) + "' (rows: " + list + ")");
   }
   if (!std::isfinite(n) || n < 0.0) {
     return make_error("zoo: exponent n = " + std::to_string(n) + " must be finite and >= 0");

@@ -72,6 +72,10 @@ TEST(Params, ErrorsQuoteUserTextAsOnePrintableLine) {
   EXPECT_TRUE(one_printable_line(bad.error().message)) << bad.error().message;
   const auto lobes = error_of("lafortune", {{"lobes", "1,1,1\x02;"}});
   EXPECT_TRUE(one_printable_line(lobes)) << lobes;
+  // The model name itself (the scene fuzzer's finding of 2026-12-05: a DEL byte inside "cook-torrance").
+  const auto model = error_of("c\x7fok-torrance", {});
+  EXPECT_TRUE(one_printable_line(model)) << model;
+  EXPECT_NE(model.find("unknown BRDF model 'c\\x7fok-torrance'"), std::string::npos) << model;
 }
 
 TEST(Params, SplitAssignment) {

@@ -1,5 +1,7 @@
 #include "shadelab/brdf/registry.h"
 
+#include "shadelab/core/text.h"
+
 namespace shadelab {
 
 std::span<const ModelInfo> brdf_models() {
@@ -34,7 +36,7 @@ Result<BrdfPtr> make_brdf(std::string_view name, const ParamAssignments& params)
   if (info == nullptr) {
     std::string list;
     for (const auto& m : brdf_models()) list += (list.empty() ? "" : ", ") + m.name;
-    return make_error("unknown BRDF model '" + std::string(name) + "' (models: " + list + ")");
+    return make_error("unknown BRDF model '" + printable(name) + "' (models: " + list + ")");
   }
   auto values = parse_params(info->name, info->params, params);
   if (!values) return values.error();

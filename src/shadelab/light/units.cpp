@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "shadelab/core/text.h"
+
 namespace shadelab {
 
 Rgb radiometric_from_photometric(const Rgb& colour, double value) {
@@ -65,10 +67,10 @@ Rgb from_base(const Rgb& v, std::string_view unit, double cone_sr) {
 Result<Rgb> convert_light(const Rgb& value, std::string_view from, std::string_view to, double cos_outer) {
   const LightUnit* a = find_light_unit(from);
   const LightUnit* b = find_light_unit(to);
-  if (a == nullptr) return make_error("light: unknown unit '" + std::string(from) + "'");
-  if (b == nullptr) return make_error("light: unknown unit '" + std::string(to) + "'");
+  if (a == nullptr) return make_error("light: unknown unit '" + printable(from) + "'");
+  if (b == nullptr) return make_error("light: unknown unit '" + printable(to) + "'");
   if (a->quantity != b->quantity) {
-    return make_error("light: cannot convert '" + std::string(from) + "' to '" + std::string(to) +
+    return make_error("light: cannot convert '" + printable(from) + "' to '" + std::string(to) +
                       "': they measure different quantities");
   }
   if (!(cos_outer >= -1.0 && cos_outer < 1.0)) {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "shadelab/core/text.h"
+
 namespace shadelab {
 
 Result<bool> MaterialSet::prepare(const Scene& scene) {
@@ -11,9 +13,9 @@ Result<bool> MaterialSet::prepare(const Scene& scene) {
     Runtime rt;
     if (!m.model.empty()) {
       rt.info = find_brdf_model(m.model);
-      if (rt.info == nullptr) return make_error("material '" + m.name + "': unknown model '" + m.model + "'");
+      if (rt.info == nullptr) return make_error("material '" + printable(m.name) + "': unknown model '" + printable(m.model) + "'");
       auto values = parse_params(rt.info->name, rt.info->params, m.params);
-      if (!values) return make_error("material '" + m.name + "': " + values.error().message);
+      if (!values) return make_error("material '" + printable(m.name) + "': " + values.error().message);
       rt.base = std::move(values).value();
       if (m.brdf) {
         rt.brdf = m.brdf;
