@@ -3,6 +3,9 @@
 // - memory_read_dram: the machine's memory-read ceiling: a vectorized sum with 8 independent 8-lane
 //   accumulators per thread (AVX2 where the CPU has it) over a 256 MiB buffer, far above L3 (32 MiB);
 // - memory_read_l3: the same over the 18 MiB of a 6 x 512^2 RGB float cube, which stays in L3;
+// - memory_read_cube_cold: the same sum over that cube evicted from the caches first (one cold pass over
+//   the projection's own bytes: what a single pass can read, ramp-up included). Buffers are 64-byte aligned
+//   (FloatBuffer), as images are;
 // - sh_projection_cold / _hot: SH9 projection of that cube in GB/s of input, with the cube evicted from the
 //   caches before each iteration (read from memory, compare with memory_read_dram) or left in L3 (compare
 //   with memory_read_l3);
@@ -122,8 +125,8 @@ double parallel_sum(const float* p, std::size_t n) {
       [](double a, double b) { return a + b; });
 }
 
-std::vector<float>& big_buffer() {
-  static std::vector<float> b(std::size_t{256} << 20 >> 2, 1.0f);  // 256 MiB
+FloatBuffer& big_buffer() {
+  static FloatBuffer b(std::size_t{256} << 20 >> 2, 1.0f);  // 256 MiB
   return b;
 }
 
@@ -147,7 +150,7 @@ BENCHMARK(memory_read_l3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // --- SH9 ---------------------------------------------------------------------------------------------
 void evict_caches() {
-  static std::vector<float> junk(std::size_t{64} << 20 >> 2, 1.0f);  // 64 MiB, twice the L3
+  static FloatBuffer junk(std::size_t{64} << 20 >> 2, 1.0f);  // 64 MiB, twice the L3
   benchmark::DoNotOptimize(parallel_sum(junk.data(), junk.size()));
 }
 
@@ -163,6 +166,20 @@ void sh_projection_cold(benchmark::State& state) {
   state.SetBytesProcessed(static_cast<std::int64_t>(static_cast<double>(state.iterations()) * cube_bytes(c)));
 }
 BENCHMARK(sh_projection_cold)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void memory_read_cube_cold(benchmark::State& state) {
+  const CubeMap& c = cube512();
+  for (auto _ : state) {
+    state.PauseTiming();
+    evict_caches();
+    state.ResumeTiming();
+    double total = 0.0;
+    for (const Image& face : c.faces) total += parallel_sum(face.data.data(), face.data.size());
+    benchmark::DoNotOptimize(total);
+  }
+  state.SetBytesProcessed(static_cast<std::int64_t>(static_cast<double>(state.iterations()) * cube_bytes(c)));
+}
+BENCHMARK(memory_read_cube_cold)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void sh_projection_hot(benchmark::State& state) {
   const CubeMap& c = cube512();

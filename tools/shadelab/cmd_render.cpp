@@ -281,7 +281,7 @@ void run_render(const RenderCliOptions& o) {
   g_interrupted.store(false);
   g_signal.store(0);
   ro.cancel = &g_interrupted;
-  std::optional<InterruptHandler> handler(std::in_place);
+  auto handler = std::make_unique<InterruptHandler>();  // (std::optional trips GCC 12 -Wmaybe-uninitialized here)
   auto result = o.mode == "game" ? render_game(scene, go) : render_scene(scene, ro);
   bar.finish();
   if (!result) throw UsageError(scene.source + ": " + result.error().message);

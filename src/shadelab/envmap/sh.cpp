@@ -522,12 +522,12 @@ Sh9 detail::project_sh9_simd(const CubeMap& cube, int widest) {
   const int pairs = (n + 1) / 2;
   const std::array<std::vector<PairTerm>, 3>& terms = pair_terms();
   // The middle row of an odd n pairs with a row of zeros (its tc is 0).
-  const std::vector<float> zero_row(3 * nn, 0.0f);
+  const FloatBuffer zero_row(3 * nn, 0.0f);
   // World moments per (row pair, face pair), summed afterwards in a fixed order: the result does not depend
   // on how TBB splits the row pairs, so it is the same for any thread count.
   std::vector<std::array<Moments, 3>> rows(static_cast<std::size_t>(pairs));
   tbb::parallel_for(tbb::blocked_range<int>(0, pairs), [&](const tbb::blocked_range<int>& range) {
-    std::vector<float> g(5 * 3 * static_cast<std::size_t>(cube_chunk));
+    FloatBuffer g(5 * 3 * static_cast<std::size_t>(cube_chunk));  // 64-byte aligned, as the face rows of N % 16 == 0
     float* const chunk3[5] = {g.data(), g.data() + 3 * cube_chunk, g.data() + 6 * cube_chunk, g.data() + 9 * cube_chunk,
                               g.data() + 12 * cube_chunk};
     auto row_pointers = [&](int p, const float* top[6], const float* bottom[6]) {

@@ -8,16 +8,36 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <new>
 #include <vector>
 
 #include "shadelab/color/rgb.h"
 
 namespace shadelab {
 
+// An allocator whose blocks start on a 64-byte boundary (a cache line, an AVX-512 register): so that every
+// image row of a size that is a multiple of 16 pixels starts on one too, whatever the heap did before, and
+// SIMD kernels read whole lines (a vector load that straddles two lines costs two).
+template <class T>
+struct CacheLineAllocator {
+  using value_type = T;
+  static constexpr std::size_t alignment = 64;
+  CacheLineAllocator() = default;
+  template <class U>
+  explicit CacheLineAllocator(const CacheLineAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{alignment})); }
+  void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, std::align_val_t{alignment}); }
+  template <class U>
+  bool operator==(const CacheLineAllocator<U>&) const noexcept {
+    return true;
+  }
+};
+using FloatBuffer = std::vector<float, CacheLineAllocator<float>>;
+
 struct Image {
   int width = 0;
   int height = 0;
-  std::vector<float> data;  // 3 floats per pixel, row-major, row 0 at the top
+  FloatBuffer data;  // 3 floats per pixel, row-major, row 0 at the top; 64-byte aligned
 
   Image() = default;
   // A black image; negative sizes are treated as 0.

@@ -369,7 +369,7 @@ Imf::Compression exr_compression(ExrCompression c) {
 
 constexpr float half_max = 65504.0f;  // largest finite half: (2 - 2^-10) 2^15
 
-std::vector<std::uint16_t> to_half_bits(const std::vector<float>& values) {
+std::vector<std::uint16_t> to_half_bits(const FloatBuffer& values) {
   std::vector<std::uint16_t> bits(values.size());
   std::transform(values.begin(), values.end(), bits.begin(), [](float v) {
     return Imath::half(std::isfinite(v) ? std::clamp(v, -half_max, half_max) : v).bits();
