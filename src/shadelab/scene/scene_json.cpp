@@ -84,9 +84,10 @@ std::string describe(const json& v) {
     if (std::isnan(d)) return "NaN";
     if (std::isinf(d)) return d > 0 ? "inf" : "-inf";
   }
-  std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
-  if (s.size() > 60) s = s.substr(0, 57) + "...";
-  return s;
+  // JSON escapes only bytes below 0x20: DEL and the like stay raw in a dumped string, so printable() writes
+  // them as \xNN (the scene fuzzer's finding of 2026-12-06: a top-level string holding 0x7f).
+  const std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
+  return printable(s, s.size() > 60 ? 57 : 60);
 }
 
 std::string join(const std::vector<std::string>& words, std::string_view separator = ", ") {

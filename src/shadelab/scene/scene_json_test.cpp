@@ -386,6 +386,8 @@ TEST(SceneJsonErrors, FileAndSyntax) {
   EXPECT_EQ(load_error(R"({"shapes": [{}, {"radius": 1e999}]})", dir),
             "scene.json: /shapes/1/radius: malformed JSON: number overflow parsing '1e999'");
   EXPECT_EQ(load_error("[1, 2]", dir), "scene.json: expected a scene (a JSON object), got [1,2]");
+  // JSON lets a string hold DEL (0x7f) raw; the message shows it escaped (the fuzzer's finding, 2026-12-06).
+  EXPECT_EQ(load_error("\"ga\x7f" "e\"", dir), "scene.json: expected a scene (a JSON object), got \"ga\\x7fe\"");
   // A good file loads through the same path.
   EXPECT_EQ(load_error(R"({"camera": {"fov": 30}})", dir), "(no error)");
 }
