@@ -205,7 +205,9 @@ Result<bool> write_shard(const fs::path& path, const ShardInfo& info, const Rend
   try {
     Imf::Header header(info.width, info.height);
     header.compression() = Imf::ZIP_COMPRESSION;
-    header.insert(shard_attribute, Imf::StringAttribute(to_json(info).dump()));
+    // The scene's path may be any bytes Linux allows; JSON holds UTF-8, so a byte outside it is written as
+    // U+FFFD (the name is for people: parts match by render_identity(), which holds the scene's hash).
+    header.insert(shard_attribute, Imf::StringAttribute(to_json(info).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)));
     Imf::FrameBuffer fb;
     auto* beauty = const_cast<float*>(result.beauty.data.data());  // OpenEXR's slices are non-const; only read
     auto* nonfinite = const_cast<std::uint32_t*>(result.nonfinite.data());

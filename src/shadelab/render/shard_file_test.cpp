@@ -227,5 +227,30 @@ TEST_F(ShardDir, NonFiniteSamplesSurviveTheMerge) {
   EXPECT_EQ(std::memcmp(merged.result.beauty.data.data(), img.data.data(), img.data.size() * sizeof(float)), 0);
 }
 
+// A scene path that is not UTF-8 (Linux allows any bytes but '/' and NUL in a name) is written, read back
+// with U+FFFD in its place, and still merges: parts match by the scene's hash, not its name (found 2026-12-06:
+// write_shard failed with the JSON library's "invalid UTF-8 byte").
+TEST_F(ShardDir, ASceneNameThatIsNotUtf8IsWrittenAndMerges) {
+  Scene s = shard_scene();
+  s.source = "scenes/s\xff" "x.json";
+  RenderOptions whole;
+  const auto ref = render_scene(s, whole).value();
+  std::vector<fs::path> files;
+  for (int i = 0; i < 2; ++i) {
+    RenderOptions o;
+    o.shard = {i, 2, ShardSplit::samples};
+    const auto r = render_scene(s, o).value();
+    files.push_back(dir / ("u" + std::to_string(i) + ".exr"));
+    auto w = write_shard(files.back(), make_shard_info(s, o, s.settings.spp, s.settings.max_depth), r);
+    ASSERT_TRUE(w) << w.error().message;
+  }
+  const auto info = read_shard_info(files[0]);
+  ASSERT_TRUE(info) << info.error().message;
+  EXPECT_EQ(info->scene, "scenes/s\xef\xbf\xbdx.json");
+  const auto merged = merge_shards(files);
+  ASSERT_TRUE(merged) << merged.error().message;
+  EXPECT_EQ(std::memcmp(merged->result.beauty.data.data(), ref.beauty.data.data(), ref.beauty.data.size() * sizeof(float)), 0);
+}
+
 }  // namespace
 }  // namespace shadelab
