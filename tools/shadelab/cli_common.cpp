@@ -38,6 +38,11 @@ void print_json(const nlohmann::json& j) {
   std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
 }
 
+std::vector<char> json_file_bytes(const nlohmann::json& j) {
+  const std::string text = j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  return {text.begin(), text.end()};
+}
+
 namespace {
 
 namespace fs = std::filesystem;

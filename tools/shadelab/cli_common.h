@@ -45,6 +45,9 @@ nlohmann::json to_json(const Rgb& c);
 // Writes JSON to stdout, indented, with a final newline. Strings that are not UTF-8 (file names) have
 // their bad bytes replaced by U+FFFD rather than failing the dump.
 void print_json(const nlohmann::json& j);
+// A JSON file's text (indent 2, a final newline). Paths may hold bytes that are not UTF-8 (Linux allows them):
+// those are written as U+FFFD, as print_json does, instead of the JSON library throwing.
+std::vector<char> json_file_bytes(const nlohmann::json& j);
 
 // A file a command reads or writes, and the option or argument that names it (for messages).
 struct NamedPath {

@@ -283,6 +283,21 @@ TEST(CliIbl, ManifestNamesEveryFileAsWritten) {
   }
 }
 
+// An input whose name is not UTF-8 (any byte but '/' and NUL is a Linux file name): the manifest, which names
+// the input, is written with U+FFFD in its place (found 2026-12-06: the JSON library threw, "internal error",
+// exit 3).
+TEST(CliIbl, AnInputNameThatIsNotUtf8IsWrittenToTheManifest) {
+  const fs::path in = temp_dir() / "const\xff" "ant.hdr";
+  fs::copy_file(constant_hdr(), in, fs::copy_options::overwrite_existing);
+  const fs::path dir = temp_dir() / "ibl_not_utf8";
+  const auto r = run("bake ibl '" + in.string() + "' --out-dir " + dir.string() +
+                     " --size 8 --levels 3 --samples 16 --irradiance-size 2 --dfg-size 2");
+  EXPECT_EQ(r.code, 0) << r.err;
+  const auto m = read_json(dir / "manifest.json");
+  ASSERT_TRUE(m.is_object());
+  EXPECT_NE(m["input"].get<std::string>().find("const\xef\xbf\xbd" "ant.hdr"), std::string::npos) << m["input"];
+}
+
 TEST(CliIbl, RefusalsAndFailuresLeaveNoPartialDirectory) {
   const std::string in = constant_hdr().string();
   const std::string small = " --size 8 --samples 16 --irradiance-size 2 --dfg-size 2";

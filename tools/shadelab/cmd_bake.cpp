@@ -561,8 +561,7 @@ void run_sh_extended(const BakeOptions& o, const Image& img, const std::vector<S
   if (o.has("--zh3")) j["zh3"] = zh3_json(zh3_from_sh(sh, o.zh3 == "stored" ? Zh3Mode::stored : Zh3Mode::hallucinated), units, window);
   if (o.error_report) j["error_report"] = error_report_json(img, o.input);
   if (!o.out.empty()) {
-    const std::string text = j.dump(2) + "\n";
-    unwrap(write_file_atomically(o.out, std::vector<char>(text.begin(), text.end())));
+    unwrap(write_file_atomically(o.out, json_file_bytes(j)));
   }
   if (o.json) {
     print_json(j);
@@ -641,8 +640,7 @@ void run_sh(const BakeOptions& o) {
   }
   const nlohmann::json j = sh9_json(sh, units, window, o.window, lights_json, o.light_normalization);
   if (!o.out.empty()) {
-    const std::string text = j.dump(2) + "\n";
-    unwrap(write_file_atomically(o.out, std::vector<char>(text.begin(), text.end())));
+    unwrap(write_file_atomically(o.out, json_file_bytes(j)));
   }
   if (o.json) {
     print_json(j);

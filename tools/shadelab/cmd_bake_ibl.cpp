@@ -76,10 +76,7 @@ struct IblOptions {
   bool has(const std::string& option) const { return std::find(given.begin(), given.end(), option) != given.end(); }
 };
 
-std::vector<char> text_bytes(const nlohmann::json& j) {
-  const std::string text = j.dump(2) + "\n";
-  return {text.begin(), text.end()};
-}
+std::vector<char> text_bytes(const nlohmann::json& j) { return json_file_bytes(j); }
 
 // The manifest entry of a cube file: container, format, faces, size, levels.
 nlohmann::json cube_entry(const std::string& file, const std::string& container, TexelFormat f, int size,

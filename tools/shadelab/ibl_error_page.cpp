@@ -152,8 +152,7 @@ nlohmann::json write_ibl_error_files(const IblErrorMap& map, const IblErrorHeade
                      {"grazing_reduction", map.grazing_reduction}}},
       {"sh", {{"cells", cells_json(map.sh)}, {"summary", summary_json(map.sh_summary)}}},
       {"outputs", files}, {"seconds", map.seconds}};
-  const std::string text = j.dump(2) + "\n";
-  unwrap(write_file_atomically(dir / names[0], std::vector<char>(text.begin(), text.end())));
+  unwrap(write_file_atomically(dir / names[0], json_file_bytes(j)));
   unwrap(write_image(heat_grid(map.split_sum, scale), dir / names[1]));
   unwrap(write_plot(error_plot(map, h.input), dir / names[2]));
   const std::string page = html_page(map, h.input, scale);
