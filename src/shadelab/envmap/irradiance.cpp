@@ -96,7 +96,7 @@ struct Lines {
   int length = 0;       // texels per line
   int face_size = 0;    // cube rows: N (line l is row l % N of face l / N)
   std::vector<float> param;   // cube rows: tc of the row; rings: cot(theta) of the ring
-  std::vector<float> prefix;  // count * (length + 1) * 9, plus 4 floats of padding for 4-wide loads
+  FloatBuffer prefix;  // count * (length + 1) * 9, plus 4 floats of padding for 4-wide loads
   // Added to every normal's sum: sum over the lines of K_l (below), 9 values as a prefix entry.
   std::array<double, 9> constant{};
   // M = sum of L dOmega d over every texel of the map (9 values as a prefix entry), in double.

@@ -15,18 +15,27 @@
 
 namespace shadelab {
 
+// Raw blocks for the allocator below (buffer.cpp): 64-byte aligned; a block of buffer_huge_bytes (2 MiB) or
+// more starts on a 2 MiB boundary, is rounded up to whole 2 MiB pages and is advised for transparent huge pages (Linux madvise), so that filling it
+// takes one page fault per 2 MiB instead of one per 4 KiB.
+inline constexpr std::size_t buffer_huge_bytes = std::size_t{2} << 20;
+void* allocate_buffer(std::size_t bytes);
+void free_buffer(void* p, std::size_t bytes) noexcept;
+
 // An allocator whose blocks start on a 64-byte boundary (a cache line, an AVX-512 register): so that every
 // image row of a size that is a multiple of 16 pixels starts on one too, whatever the heap did before, and
 // SIMD kernels read whole lines (a vector load that straddles two lines costs two).
 template <class T>
 struct CacheLineAllocator {
   using value_type = T;
-  static constexpr std::size_t alignment = 64;
   CacheLineAllocator() = default;
   template <class U>
   explicit CacheLineAllocator(const CacheLineAllocator<U>&) noexcept {}
-  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{alignment})); }
-  void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, std::align_val_t{alignment}); }
+  T* allocate(std::size_t n) {
+    if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
+    return static_cast<T*>(allocate_buffer(n * sizeof(T)));
+  }
+  void deallocate(T* p, std::size_t n) noexcept { free_buffer(p, n * sizeof(T)); }
   template <class U>
   bool operator==(const CacheLineAllocator<U>&) const noexcept {
     return true;
