@@ -34,12 +34,19 @@ BrdfPtr build_brdf(const std::string& model, const std::vector<std::string>& par
 
 nlohmann::json to_json(const Rgb& c) { return nlohmann::json::array({c.r, c.g, c.b}); }
 
-void print_json(const nlohmann::json& j) {
-  std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+namespace {
+
+// Indented JSON with a final newline; bytes that are not UTF-8 become U+FFFD instead of the dump throwing.
+std::string json_text(const nlohmann::json& j) {
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
+}  // namespace
+
+void print_json(const nlohmann::json& j) { std::cout << json_text(j); }
+
 std::vector<char> json_file_bytes(const nlohmann::json& j) {
-  const std::string text = j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  const std::string text = json_text(j);
   return {text.begin(), text.end()};
 }
 

@@ -76,8 +76,6 @@ struct IblOptions {
   bool has(const std::string& option) const { return std::find(given.begin(), given.end(), option) != given.end(); }
 };
 
-std::vector<char> text_bytes(const nlohmann::json& j) { return json_file_bytes(j); }
-
 // The manifest entry of a cube file: container, format, faces, size, levels.
 nlohmann::json cube_entry(const std::string& file, const std::string& container, TexelFormat f, int size,
                           std::size_t levels) {
@@ -259,10 +257,10 @@ void run_ibl(const IblOptions& o) {
   std::vector<std::pair<fs::path, std::vector<char>>> files;
   files.emplace_back(dir / specular_file, std::move(specular_bytes));
   files.emplace_back(dir / irradiance_file, std::move(irradiance_bytes));
-  files.emplace_back(dir / "sh9.json", text_bytes(sh_json));
+  files.emplace_back(dir / "sh9.json", json_file_bytes(sh_json));
   files.emplace_back(dir / "dfg.ktx2", std::move(dfg_bytes));
-  files.emplace_back(dir / "split_sum_lobes.json", text_bytes(lobes_json));
-  files.emplace_back(dir / "manifest.json", text_bytes(manifest));  // last: a manifest names complete files
+  files.emplace_back(dir / "split_sum_lobes.json", json_file_bytes(lobes_json));
+  files.emplace_back(dir / "manifest.json", json_file_bytes(manifest));  // last: a manifest names complete files
 
   // The directories this run creates, outermost first, so that a failed write removes them again.
   std::vector<fs::path> created;

@@ -31,7 +31,7 @@ std::size_t block_bytes(std::size_t bytes) {
 }  // namespace
 
 void* allocate_buffer(std::size_t bytes) {
-  if (bytes > (std::size_t{1} << 62)) throw std::bad_alloc();
+  if (bytes > (std::size_t{1} << 62)) throw std::bad_alloc();  // so that the rounding up cannot wrap
   const std::size_t block = block_bytes(bytes);
   void* p = ::operator new(block, alignment_of(bytes));
 #if defined(__linux__) && defined(MADV_HUGEPAGE)

@@ -16,8 +16,8 @@
 namespace shadelab {
 
 // Raw blocks for the allocator below (buffer.cpp): 64-byte aligned; a block of buffer_huge_bytes (2 MiB) or
-// more starts on a 2 MiB boundary, is rounded up to whole 2 MiB pages and is advised for transparent huge pages (Linux madvise), so that filling it
-// takes one page fault per 2 MiB instead of one per 4 KiB.
+// more starts on a 2 MiB boundary, is rounded up to whole 2 MiB pages and is advised for transparent huge
+// pages (Linux madvise), so that filling it takes one page fault per 2 MiB instead of one per 4 KiB.
 inline constexpr std::size_t buffer_huge_bytes = std::size_t{2} << 20;
 void* allocate_buffer(std::size_t bytes);
 void free_buffer(void* p, std::size_t bytes) noexcept;

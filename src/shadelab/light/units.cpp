@@ -70,7 +70,7 @@ Result<Rgb> convert_light(const Rgb& value, std::string_view from, std::string_v
   if (a == nullptr) return make_error("light: unknown unit '" + printable(from) + "'");
   if (b == nullptr) return make_error("light: unknown unit '" + printable(to) + "'");
   if (a->quantity != b->quantity) {
-    return make_error("light: cannot convert '" + printable(from) + "' to '" + std::string(to) +
+    return make_error("light: cannot convert '" + std::string(from) + "' to '" + std::string(to) +
                       "': they measure different quantities");
   }
   if (!(cos_outer >= -1.0 && cos_outer < 1.0)) {

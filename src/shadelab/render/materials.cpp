@@ -11,29 +11,30 @@ Result<bool> MaterialSet::prepare(const Scene& scene) {
   m_runtime.clear();
   for (const Material& m : scene.materials) {
     Runtime rt;
+    const std::string where = "material '" + printable(m.name) + "'";  // the name as the scene file spells it
     if (!m.model.empty()) {
       rt.info = find_brdf_model(m.model);
-      if (rt.info == nullptr) return make_error("material '" + printable(m.name) + "': unknown model '" + printable(m.model) + "'");
+      if (rt.info == nullptr) return make_error(where + ": unknown model '" + printable(m.model) + "'");
       auto values = parse_params(rt.info->name, rt.info->params, m.params);
-      if (!values) return make_error("material '" + printable(m.name) + "': " + values.error().message);
+      if (!values) return make_error(where + ": " + values.error().message);
       rt.base = std::move(values).value();
       if (m.brdf) {
         rt.brdf = m.brdf;
       } else {
         auto b = rt.info->create(*rt.base);
-        if (!b) return make_error("material '" + m.name + "': " + b.error().message);
+        if (!b) return make_error(where + ": " + b.error().message);
         rt.brdf = std::shared_ptr<const Brdf>(std::move(b).value());
       }
       rt.textured = m.textured();
       auto has = [&](const char* name) {
         return std::any_of(rt.info->params.begin(), rt.info->params.end(), [&](const ParamSpec& s) { return s.name == name; });
       };
-      if (m.kd_texture >= 0 && !has("kd")) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameter kd for its kd texture");
-      if (m.gloss_texture >= 0 && !has("n")) return make_error("material '" + m.name + "': model '" + m.model + "' has no exponent n for its gloss texture");
+      if (m.kd_texture >= 0 && !has("kd")) return make_error(where + ": model '" + m.model + "' has no parameter kd for its kd texture");
+      if (m.gloss_texture >= 0 && !has("n")) return make_error(where + ": model '" + m.model + "' has no exponent n for its gloss texture");
       rt.ks_is_f0 = m.model == "cook-torrance" && rt.base->choice("f") == "schlick";
-      if (m.ks_texture >= 0 && !rt.ks_is_f0 && !has("ks")) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameter ks for its ks texture");
-      if (m.base_color_texture >= 0 && !has("base_color")) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameter base_color for its base_color texture");
-      if (m.metallic_roughness_texture >= 0 && !(has("metallic") && has("perceptual_roughness"))) return make_error("material '" + m.name + "': model '" + m.model + "' has no parameters metallic and perceptual_roughness for its metallic_roughness texture");
+      if (m.ks_texture >= 0 && !rt.ks_is_f0 && !has("ks")) return make_error(where + ": model '" + m.model + "' has no parameter ks for its ks texture");
+      if (m.base_color_texture >= 0 && !has("base_color")) return make_error(where + ": model '" + m.model + "' has no parameter base_color for its base_color texture");
+      if (m.metallic_roughness_texture >= 0 && !(has("metallic") && has("perceptual_roughness"))) return make_error(where + ": model '" + m.model + "' has no parameters metallic and perceptual_roughness for its metallic_roughness texture");
     } else if (m.brdf) {
       rt.brdf = m.brdf;
     }
