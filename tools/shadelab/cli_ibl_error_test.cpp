@@ -68,6 +68,20 @@ TEST(CliIblError, WritesTheMapsAndAConstantEnvironmentHasNoError) {
     EXPECT_NEAR(c["shortcut"].get<double>(), 0.5, 0.005) << c;
   }
   EXPECT_TRUE(j["split_sum"]["summary"].contains("grazing_mean_abs_error"));
+  EXPECT_EQ(j["corrected"]["taps"], 0);  // taps only with --correction filtered
+  // The filtered taps: each part a weighted mean of chain reads, exact for a constant too.
+  const auto jf = json_of(run("ibl-error " + constant_hdr().string() + quick + " --correction filtered --taps 16 --out " +
+                              (temp_dir() / "ibl_error_filtered").string() + " --json"));
+  EXPECT_EQ(jf["corrected"]["direction"].get<std::string>().rfind("filtered:", 0), 0u);
+  EXPECT_EQ(jf["corrected"]["taps"], 16);
+  for (const auto& row : jf["corrected"]["rows"]) {
+    for (const auto& c : row["cells"]) {
+      if (c["pixels"] == 0) continue;
+      EXPECT_LE(std::abs(c["error"].get<double>()),
+                4.0 * c["reference_standard_error"].get<double>() / c["reference"].get<double>() + 6e-3)
+          << c;
+    }
+  }
   std::ifstream page(dir / "index.html");
   std::stringstream ps;
   ps << page.rdbuf();
@@ -84,7 +98,9 @@ TEST(CliIblError, BadInputIsOneLineAndWritesNothing) {
   expect_usage_error("ibl-error " + in + " --roughness 0" + out, "--roughness: 0 is not in (0, 1]");
   expect_usage_error("ibl-error " + in + " --roughness 0.5,nan" + out, "--roughness");
   expect_usage_error("ibl-error " + in + " --bins 0" + out, "--bins");
-  expect_usage_error("ibl-error " + in + " --correction mirror" + out, "--correction: 'mirror' is not lobes or dominant");
+  expect_usage_error("ibl-error " + in + " --correction mirror" + out, "--correction: 'mirror' is not lobes, dominant or filtered");
+  expect_usage_error("ibl-error " + in + " --correction filtered --taps 0" + out, "--taps");
+  expect_usage_error("ibl-error " + in + " --correction filtered --taps 1025" + out, "--taps");
   expect_usage_error("ibl-error " + in + " --specular-size 48" + out, "--specular-size: 48 is not a power of two");
   expect_usage_error("ibl-error " + in + " --specular-size 2048" + out, "--specular-size");
   expect_usage_error("ibl-error " + in + " --size 8" + out, "--size");

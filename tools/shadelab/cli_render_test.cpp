@@ -79,15 +79,25 @@ TEST(CliRender, GgxSpecularSplitSumAndItsLookup) {
   const auto split = render(" --ggx-specular split-sum", "ggx_split.exr");
   const auto lobes = render(" --ggx-specular split-sum --split-sum-lookup lobes", "ggx_lobes.exr");
   const auto mirror = render(" --ggx-specular split-sum --split-sum-lookup mirror", "ggx_mirror.exr");
+  const auto filtered = render(" --ggx-specular split-sum --split-sum-lookup filtered", "ggx_filtered.exr");
+  const auto filtered64 = render(" --ggx-specular split-sum --split-sum-lookup filtered --split-sum-taps 64", "ggx_f64.exr");
+  const auto filtered8 = render(" --ggx-specular split-sum --split-sum-lookup filtered --split-sum-taps 8", "ggx_f8.exr");
   EXPECT_NE(phong, split);
   EXPECT_EQ(split, lobes);  // lobes is the default lookup
   EXPECT_NE(lobes, mirror);
+  EXPECT_NE(lobes, filtered);
+  EXPECT_EQ(filtered, filtered64);  // 64 taps by default
+  EXPECT_NE(filtered, filtered8);
   expect_usage_error("render " + scene.string() + " --ggx-specular split-sum", "--ggx-specular applies to --mode game");
   expect_usage_error("render " + scene.string() + " --mode game --ggx-specular ggx", "--ggx-specular: 'ggx' is not one of");
   expect_usage_error("render " + scene.string() + " --mode game --split-sum-lookup mirror",
                      "--split-sum-lookup applies to --ggx-specular split-sum");
   expect_usage_error("render " + scene.string() + " --mode game --ggx-specular split-sum --split-sum-lookup up",
                      "--split-sum-lookup: 'up' is not one of");
+  expect_usage_error("render " + scene.string() + " --mode game --ggx-specular split-sum --split-sum-taps 8",
+                     "--split-sum-taps applies to --split-sum-lookup filtered");
+  expect_usage_error("render " + scene.string() + " --mode game --ggx-specular split-sum --split-sum-lookup filtered "
+                     "--split-sum-taps 0", "--split-sum-taps: 0 is out of range [1, 1024]");
 }
 
 TEST(CliRender, InterruptWritesThePartialImage) {

@@ -14,6 +14,7 @@
 #include "ibl_error_page.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/image/metrics.h"
+#include "shadelab/envmap/split_sum_taps.h"
 #include "shadelab/plot/plot.h"
 #include "shadelab/render/ibl_error.h"
 #include "shadelab/render/threads.h"
@@ -35,6 +36,7 @@ struct IblErrorCliOptions {
   int threads = 0;
   int specular_size = 64;  // GameOptions::specular_size, the game renderer's
   std::string correction = "lobes";
+  int taps = 64;  // --correction filtered: GameOptions::split_sum_taps
   bool json = false;
 };
 
@@ -48,9 +50,10 @@ void run_ibl_error(const IblErrorCliOptions& o) {
     throw UsageError(fmt::format("--specular-size: {} is not a power of two (the chain halves down to 1 x 1)",
                                  o.specular_size));
   }
-  if (o.correction != "lobes" && o.correction != "dominant") {
-    throw UsageError("--correction: '" + o.correction + "' is not lobes or dominant");
+  if (o.correction != "lobes" && o.correction != "dominant" && o.correction != "filtered") {
+    throw UsageError("--correction: '" + o.correction + "' is not lobes, dominant or filtered");
   }
+  check_range("--taps", true, o.taps, 1, split_sum_taps_max);
   if (o.roughness.empty()) throw UsageError("--roughness: give at least one value");
   for (const double r : o.roughness) {
     if (!(r > 0.0 && r <= 1.0)) throw UsageError(fmt::format("--roughness: {} is not in (0, 1]", r));
@@ -85,7 +88,10 @@ void run_ibl_error(const IblErrorCliOptions& o) {
   io.seed = seed;
   io.threads = o.threads;
   io.game.specular_size = o.specular_size;
-  io.correction = o.correction == "dominant" ? GameSplitSumDirection::dominant : GameSplitSumDirection::lobes;
+  io.correction = o.correction == "dominant"   ? GameSplitSumDirection::dominant
+                  : o.correction == "filtered" ? GameSplitSumDirection::filtered
+                                               : GameSplitSumDirection::lobes;
+  io.game.split_sum_taps = o.taps;
   const ParamAssignments params = parse_assignments(o.params);
   for (const auto& [key, value] : params) {  // the map's own rules first, then the model's (a test build)
     if (key == "roughness" || key == "perceptual_roughness" || key == "kd" || key == "metallic") continue;
@@ -115,7 +121,9 @@ void run_ibl_error(const IblErrorCliOptions& o) {
   fmt::print("split sum: mean |error| {:.2f}%, max {:.2f}%, at N.V < 0.3 {:.2f}%\n", 100.0 * map.split_sum_summary.mean_abs,
              100.0 * map.split_sum_summary.max_abs, 100.0 * map.split_sum_summary.grazing_mean_abs);
   fmt::print("split sum {}: mean |error| {:.2f}%, max {:.2f}%, at N.V < 0.3 {:.2f}% ({:.1f}% less)\n",
-             o.correction == "dominant" ? "along the dominant direction" : "read per lobe", 100.0 * map.corrected_summary.mean_abs, 100.0 * map.corrected_summary.max_abs,
+             o.correction == "dominant" ? "along the dominant direction"
+             : o.correction == "filtered" ? fmt::format("filtered over each lobe ({} taps)", o.taps)
+                                          : std::string("read per lobe"), 100.0 * map.corrected_summary.mean_abs, 100.0 * map.corrected_summary.max_abs,
              100.0 * map.corrected_summary.grazing_mean_abs, 100.0 * map.grazing_reduction);
   fmt::print("SH9 irradiance: mean |error| {:.2f}%, max {:.2f}%\n", 100.0 * map.sh_summary.mean_abs,
              100.0 * map.sh_summary.max_abs);
@@ -138,8 +146,10 @@ void add_ibl_error_command(CLI::App& app, Command& command) {
   sub->add_option("--seed", o->seed, "seed of the reference renders")->capture_default_str();
   sub->add_option("--threads", o->threads, "0: all cores")->capture_default_str();
   sub->add_option("--correction", o->correction, "the corrected map's lookup: lobes (each part at its lobe's first "
-                                                "moments) or dominant (normalize(mix(R, n, alpha^2)))")
+                                                "moments), dominant (normalize(mix(R, n, alpha^2))) or filtered (each part the mean "
+                                                "of --taps reads over its own lobe)")
       ->capture_default_str();
+  sub->add_option("--taps", o->taps, "--correction filtered: chain reads per pixel, in [1, 1024]")->capture_default_str();
   sub->add_option("--specular-size", o->specular_size, "face size of the prefiltered GGX chain's level 0 (a power "
                                                        "of two; the game renderer's default)")->capture_default_str();
   sub->add_flag("--json", o->json, "machine-readable output (the file ibl_error.json)");

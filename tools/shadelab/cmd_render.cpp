@@ -16,6 +16,7 @@
 
 #include "cli_common.h"
 #include "progress.h"
+#include "shadelab/envmap/split_sum_taps.h"
 #include "shadelab/render/film.h"
 #include "shadelab/render/game_renderer.h"
 #include "shadelab/render/path_tracer.h"
@@ -78,6 +79,8 @@ struct RenderCliOptions {
   std::string ggx_specular = "phong";      // game mode: GameOptions::ggx_specular
   std::string split_sum_lookup = "lobes";  // game mode: GameOptions::split_sum_direction
   bool ggx_specular_given = false, split_sum_lookup_given = false;
+  int split_sum_taps = 64;  // game mode, --split-sum-lookup filtered: GameOptions::split_sum_taps
+  bool split_sum_taps_given = false;
   bool json = false;
   bool progress = false;
   std::string shard;  // "I/N": render one part for `shadelab merge` (docs/scale-out.md)
@@ -236,10 +239,18 @@ void run_render(const RenderCliOptions& o) {
   if (o.split_sum_lookup == "lobes") go.split_sum_direction = GameSplitSumDirection::lobes;
   else if (o.split_sum_lookup == "dominant") go.split_sum_direction = GameSplitSumDirection::dominant;
   else if (o.split_sum_lookup == "mirror") go.split_sum_direction = GameSplitSumDirection::mirror;
-  else throw UsageError("--split-sum-lookup: '" + o.split_sum_lookup + "' is not one of lobes | dominant | mirror");
+  else if (o.split_sum_lookup == "filtered") go.split_sum_direction = GameSplitSumDirection::filtered;
+  else throw UsageError("--split-sum-lookup: '" + o.split_sum_lookup + "' is not one of lobes | dominant | mirror | filtered");
   if (o.split_sum_lookup_given && go.ggx_specular != GameGgxSpecular::split_sum) {
     throw UsageError("--split-sum-lookup applies to --ggx-specular split-sum");
   }
+  if (o.split_sum_taps_given && go.split_sum_direction != GameSplitSumDirection::filtered) {
+    throw UsageError("--split-sum-taps applies to --split-sum-lookup filtered");
+  }
+  if (o.split_sum_taps < 1 || o.split_sum_taps > split_sum_taps_max) {
+    throw UsageError(fmt::format("--split-sum-taps: {} is out of range [1, {}]", o.split_sum_taps, split_sum_taps_max));
+  }
+  go.split_sum_taps = o.split_sum_taps;
   go.environment_size = o.env_size;
   go.specular_size = o.specular_size;
   go.threads = ro.threads;
@@ -350,7 +361,11 @@ void add_render_command(CLI::App& app, Command& command) {
       ->capture_default_str();
   sub->add_option("--split-sum-lookup", o->split_sum_lookup,
                   "game mode, --ggx-specular split-sum: lobes (each part at its lobe's first moments), dominant "
-                  "(normalize(mix(R, n, alpha^2))) or mirror (R)")
+                  "(normalize(mix(R, n, alpha^2))), mirror (R) or filtered (each part the mean of "
+                  "--split-sum-taps reads over its own lobe)")
+      ->capture_default_str();
+  sub->add_option("--split-sum-taps", o->split_sum_taps,
+                  "game mode, --split-sum-lookup filtered: chain reads per pixel, in [1, 1024]")
       ->capture_default_str();
   sub->add_flag("--json", o->json, "machine-readable summary");
   sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");
@@ -367,6 +382,7 @@ void add_render_command(CLI::App& app, Command& command) {
     o->specular_size_given = sub->count("--specular-size") > 0;
     o->ggx_specular_given = sub->count("--ggx-specular") > 0;
     o->split_sum_lookup_given = sub->count("--split-sum-lookup") > 0;
+    o->split_sum_taps_given = sub->count("--split-sum-taps") > 0;
     command.run = [o] { run_render(*o); };
   });
 }

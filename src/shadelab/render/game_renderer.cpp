@@ -20,6 +20,7 @@
 #include "shadelab/core/constants.h"
 #include "shadelab/envmap/dfg.h"
 #include "shadelab/envmap/split_sum_lobes.h"
+#include "shadelab/envmap/split_sum_taps.h"
 #include "shadelab/envmap/irradiance.h"
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/envmap/prefilter_ggx.h"
@@ -100,6 +101,9 @@ class GameShader {
     if (m_baked != nullptr) m_sh = m_baked->sh;
     if (any_split_sum) {
       if (m_options.dfg_size < 1 || m_options.dfg_size > 4096) return make_error("dfg_size must be in [1, 4096]");
+      if (m_options.split_sum_taps < 1 || m_options.split_sum_taps > split_sum_taps_max) {
+        return make_error("split_sum_taps must be in [1, 1024]");
+      }
       m_dfg = &game_dfg_table(m_options.dfg_size);
       // Its rows are computed as the pixels first read them (split_sum_lobes.h).
       if (m_options.split_sum_direction == GameSplitSumDirection::lobes) m_lobes = &split_sum_lobe_table();
@@ -192,7 +196,12 @@ class GameShader {
       Vec3 r = kernel::game_reflect(wo_world, sf.frame.n);
       const DfgAb ab = dfg_lookup(*m_dfg, wo.z, split->roughness);
       Rgb spec;
-      if (m_lobes != nullptr) {
+      if (m_options.split_sum_direction == GameSplitSumDirection::filtered) {
+        // Each part averaged over its own lobe by taps of the same chain (envmap/split_sum_taps.h).
+        const SplitSumReads reads =
+            split_sum_filtered_reads(m_baked->specular_ggx, sf.frame, wo, split->roughness, m_options.split_sum_taps);
+        spec = Rgb(kernel::game_split_sum_specular_lobes(reads.a, reads.b, split->f0, split->f90, ab.a, ab.b));
+      } else if (m_lobes != nullptr) {
         // Each part along and at the roughness of its own lobe's first moments (envmap/split_sum_lobes.h).
         const SplitSumLobes lobes = split_sum_lobes(*m_lobes, wo.z, split->roughness);
         const Vec3 da = kernel::game_split_sum_lobe_direction(sf.frame.n, r, lobes.a.angle);

@@ -62,7 +62,9 @@ enum class GameGgxSpecular { split_sum, phong };
 // roughness that match the first moments of its true lobe (envmap/split_sum_lobes.h): two reads of the same
 // chain, the same storage; on all eight blender-data maps its mean error over the map is below R's, for a
 // dielectric and for a metal (docs/envmap.md).
-enum class GameSplitSumDirection { mirror, dominant, lobes };
+// `filtered`: each part averaged over its own true lobe by split_sum_taps taps of the same chain, each read
+// with the footprint of its share of solid angle (envmap/split_sum_taps.h): the same storage, N reads.
+enum class GameSplitSumDirection { mirror, dominant, lobes, filtered };
 
 struct GameOptions {
   bool shadows = true;
@@ -86,6 +88,7 @@ struct GameOptions {
   int ggx_samples = 1024;
   int dfg_size = 64;          // the split sum's DFG table (dfg.h), baked once per process per size
   GameSplitSumDirection split_sum_direction = GameSplitSumDirection::lobes;
+  int split_sum_taps = 64;  // split_sum_direction filtered: taps per pixel, in [1, 1024]
 };
 
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options = {});

@@ -131,6 +131,9 @@ std::string split_sum_correction_text(GameSplitSumDirection correction) {
     case GameSplitSumDirection::lobes:
       return "lobes: f0 A read along and at the roughness of the A lobe's first moments, f90 B of the B lobe's "
              "(envmap/split_sum_lobes.h)";
+    case GameSplitSumDirection::filtered:
+      return "filtered: f0 A and f90 B each the mean of its own lobe over taps of the chain, each read with its "
+             "share of solid angle (envmap/split_sum_taps.h)";
   }
   return "";
 }
@@ -194,6 +197,7 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
   IblErrorMap map;
   map.model = model;
   map.correction = o.correction;
+  if (o.correction == GameSplitSumDirection::filtered) map.taps = o.game.split_sum_taps;
   GameOptions split = o.game;
   split.ggx_specular = GameGgxSpecular::split_sum;
   split.diffuse = GameAmbient::none;

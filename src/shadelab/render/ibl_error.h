@@ -11,8 +11,10 @@
 //   mirror direction R as Karis 2013 publishes it (GameSplitSumDirection::mirror);
 // - the corrected shortcut: the same chain and table read as options.correction says: by default each part
 //   (f0 A, f90 B) along and at the roughness that match its true lobe's first moments
-//   (GameSplitSumDirection::lobes, envmap/split_sum_lobes.h), or along the dominant direction
-//   normalize(mix(R, n, alpha^2)) (GameSplitSumDirection::dominant, kernels/game_ambient.sl); the same storage.
+//   (GameSplitSumDirection::lobes, envmap/split_sum_lobes.h), along the dominant direction
+//   normalize(mix(R, n, alpha^2)) (GameSplitSumDirection::dominant, kernels/game_ambient.sl), or each part the
+//   mean of game.split_sum_taps reads over its own lobe (GameSplitSumDirection::filtered,
+//   envmap/split_sum_taps.h); the same storage.
 // The environment is baked once (bake_game_environment) for all the game renders of a map.
 // The camera looks at the sphere from `view_direction` (default +Z, along the horizon) through a narrow
 // field of view (distance 20, the sphere filling the frame), so each pixel's N.V is that of its centre ray
@@ -53,7 +55,8 @@ struct IblErrorOptions {
   int threads = 0;  // 0: all cores
   Vec3 view_direction{0.0, 0.0, 1.0};  // from the sphere toward the camera
   GameOptions game;  // the shortcut's options; ggx_specular, diffuse, punctual, split_sum_direction set per map
-  // The corrected map's lookup: the lobe-matched reads (default) or the dominant direction.
+  // The corrected map's lookup: the lobe-matched reads (default), the dominant direction or the filtered taps
+  // (game.split_sum_taps of them).
   GameSplitSumDirection correction = GameSplitSumDirection::lobes;
 };
 
@@ -83,6 +86,7 @@ struct IblErrorMap {
   IblErrorSummary split_sum_summary;
   std::vector<IblErrorRow> corrected;  // the same rows read as `correction` says
   GameSplitSumDirection correction = GameSplitSumDirection::lobes;
+  int taps = 0;  // correction filtered: options.game.split_sum_taps (0 otherwise)
   IblErrorSummary corrected_summary;
   // 1 - corrected.grazing_mean_abs / split_sum.grazing_mean_abs (0 when the latter is 0): the share of the
   // grazing error the correction removes (issue 11 asks for >= 0.25).
