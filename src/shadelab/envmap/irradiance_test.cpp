@@ -7,17 +7,12 @@
 #include "shadelab/core/constants.h"
 #include "shadelab/envmap/sh.h"
 #include "shadelab/light/hemisphere_light.h"
+#include "shadelab/envmap/cube_test_util.h"
 
 namespace shadelab {
 namespace {
 
-CubeMap make_cube(int n, const std::function<Rgb(const Vec3&)>& f) {
-  CubeMap c(n);
-  for (int face = 0; face < 6; ++face)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) c.set(face, x, y, f(texel_direction(face, x, y, n)));
-  return c;
-}
+using test_cubes::make_cube;
 
 TEST(Irradiance, ConstantHalfBakesToHalfInGameUnits) {
   const CubeMap env = make_cube(32, [](const Vec3&) { return Rgb::gray(0.5); });

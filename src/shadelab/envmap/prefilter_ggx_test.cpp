@@ -20,17 +20,12 @@
 #include "shadelab/core/constants.h"
 #include "shadelab/envmap/latlong.h"
 #include "shadelab/image/image_io.h"
+#include "shadelab/envmap/cube_test_util.h"
 
 namespace shadelab {
 namespace {
 
-CubeMap make_cube(int n, const std::function<Rgb(const Vec3&)>& f) {
-  CubeMap c(n);
-  for (int face = 0; face < 6; ++face)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) c.set(face, x, y, f(texel_direction(face, x, y, n)));
-  return c;
-}
+using test_cubes::make_cube;
 
 // The reference, written here independently of the library: every input texel with its exact solid angle and
 // the GGX lobe D(h) max(R.l, 0), D = alpha^2 / (pi ((alpha^2 - 1) (R.h)^2 + 1)^2), h = (R + l)/|R + l|.

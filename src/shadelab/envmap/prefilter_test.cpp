@@ -5,17 +5,12 @@
 #include <cmath>
 
 #include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/cube_test_util.h"
 
 namespace shadelab {
 namespace {
 
-CubeMap make_cube(int n, const std::function<Rgb(const Vec3&)>& f) {
-  CubeMap c(n);
-  for (int face = 0; face < 6; ++face)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) c.set(face, x, y, f(texel_direction(face, x, y, n)));
-  return c;
-}
+using test_cubes::make_cube;
 
 TEST(Prefilter, GlossMapping) {
   EXPECT_DOUBLE_EQ(prefilter_exponent(0, 8, 10, 1), 2048.0);

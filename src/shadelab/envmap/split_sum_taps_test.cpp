@@ -15,6 +15,7 @@
 
 #include "shadelab/envmap/dfg.h"
 #include "shadelab/envmap/ggx_test_formulas.h"
+#include "shadelab/envmap/cube_test_util.h"
 
 namespace shadelab {
 namespace {
@@ -22,13 +23,7 @@ namespace {
 using test_formulas::ggx_d;
 using test_formulas::ggx_lambda;
 
-CubeMap make_cube(int n, const std::function<Rgb(const Vec3&)>& f) {
-  CubeMap c(n);
-  for (int face = 0; face < 6; ++face)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) c.set(face, x, y, f(texel_direction(face, x, y, n)));
-  return c;
-}
+using test_cubes::make_cube;
 
 TEST(SplitSumTaps, WeightsAverageToTheDfgTable) {
   // The mean tap weight of each part is an estimate of A or B (dfg.h's adaptive quadrature).
