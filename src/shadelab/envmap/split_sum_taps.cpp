@@ -2,7 +2,6 @@
 #include "shadelab/envmap/split_sum_taps.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -12,42 +11,52 @@
 
 namespace shadelab {
 
+namespace {
+
+// Tap i of n for wo at GGX alpha (split_sum_taps.h).
+SplitSumTap make_tap(const Vec3& wo, double alpha, int i, int n) {
+  SplitSumTap t;
+  if (!(wo.z > 0.0)) return t;  // a view below the (shading) horizon: no tap weighs anything
+  // Hammersley point i of n: ((i + 1/2)/n, radical inverse of i), the latter Sobol's dimension 0.
+  const Vec2 u{(i + 0.5) / n, sobol_u32(static_cast<std::uint32_t>(i), 0) * 0x1p-32};
+  const Vec3 h = sample_ggx_vndf_bounded(wo, u, alpha, alpha);
+  const double vh = dot(wo, h);
+  t.l = h * (2.0 * vh) - wo;  // reflect(wo, h)
+  if (!(t.l.z > 0.0) || !(vh > 0.0)) return t;
+  const double p = ggx_vndf_bounded_pdf(t.l, wo, alpha, alpha);
+  if (!(p > 0.0)) return t;
+  // f cos / p with f cos = D G2 / (4 N.V) per unit F, split by Schlick's Fc = (1 - v.h)^5 (dfg.h).
+  const double w = D_ggx(h.z, alpha) * G2_ggx_correlated(t.l, wo, alpha, alpha) / (4.0 * wo.z * p);
+  const double fc = std::pow(1.0 - vh, 5.0);
+  t.weight_a = w * (1.0 - fc);
+  t.weight_b = w * fc;
+  // The tap's share of solid angle 1 / (n p), covered by a chain lobe of solid angle 4 pi alpha_i^2.
+  const double alpha_i = std::sqrt(1.0 / (n * p * 4.0 * pi));
+  t.roughness = std::min(std::sqrt(alpha_i), 1.0);
+  return t;
+}
+
+void check_count(int n) {
+  if (n < 1 || n > split_sum_taps_max) throw std::invalid_argument("split-sum taps: the tap count must be in [1, 1024]");
+}
+
+}  // namespace
+
 void split_sum_taps(const Vec3& wo, double roughness, std::span<SplitSumTap> out) {
   const auto n = static_cast<int>(out.size());
-  if (n < 1 || n > split_sum_taps_max) throw std::invalid_argument("split_sum_taps: the tap count must be in [1, 1024]");
+  check_count(n);
   const double alpha = std::max(roughness * roughness, 1e-4);
-  const double nv = wo.z;
-  for (int i = 0; i < n; ++i) {
-    SplitSumTap& t = out[static_cast<std::size_t>(i)];
-    t = SplitSumTap{};
-    // Hammersley point i of n: ((i + 1/2)/n, radical inverse of i), the latter Sobol's dimension 0.
-    const Vec2 u{(i + 0.5) / n, sobol_u32(static_cast<std::uint32_t>(i), 0) * 0x1p-32};
-    const Vec3 h = sample_ggx_vndf_bounded(wo, u, alpha, alpha);
-    const double vh = dot(wo, h);
-    t.l = h * (2.0 * vh) - wo;  // reflect(wo, h)
-    if (!(t.l.z > 0.0) || !(vh > 0.0)) continue;
-    const double p = ggx_vndf_bounded_pdf(t.l, wo, alpha, alpha);
-    if (!(p > 0.0)) continue;
-    // f cos / p with f cos = D G2 / (4 N.V) per unit F, split by Schlick's Fc = (1 - v.h)^5 (dfg.h).
-    const double w = D_ggx(h.z, alpha) * G2_ggx_correlated(t.l, wo, alpha, alpha) / (4.0 * nv * p);
-    const double fc = std::pow(1.0 - vh, 5.0);
-    t.weight_a = w * (1.0 - fc);
-    t.weight_b = w * fc;
-    // The tap's share of solid angle 1 / (n p), covered by a chain lobe of solid angle 4 pi alpha_i^2.
-    const double alpha_i = std::sqrt(1.0 / (n * p * 4.0 * pi));
-    t.roughness = std::min(std::sqrt(alpha_i), 1.0);
-  }
+  for (int i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = make_tap(wo, alpha, i, n);
 }
 
 SplitSumReads split_sum_filtered_reads(const GgxPrefilteredCube& chain, const Frame& frame, const Vec3& wo,
                                        double roughness, int taps) {
-  if (taps < 1 || taps > split_sum_taps_max) throw std::invalid_argument("split_sum_filtered_reads: taps must be in [1, 1024]");
-  std::array<SplitSumTap, split_sum_taps_max> buffer;
-  const std::span<SplitSumTap> t(buffer.data(), static_cast<std::size_t>(taps));
-  split_sum_taps(wo, roughness, t);
+  check_count(taps);
+  const double alpha = std::max(roughness * roughness, 1e-4);
   Rgb sum_a, sum_b;
   double wa = 0.0, wb = 0.0;
-  for (const SplitSumTap& tap : t) {
+  for (int i = 0; i < taps; ++i) {
+    const SplitSumTap tap = make_tap(wo, alpha, i, taps);
     if (tap.weight_a <= 0.0 && tap.weight_b <= 0.0) continue;
     const Rgb c = sample_ggx_chain(chain, frame.to_world(tap.l), tap.roughness);
     sum_a += c * tap.weight_a;

@@ -39,8 +39,9 @@ struct SplitSumTap {
 
 constexpr int split_sum_taps_max = 1024;
 
-// The taps for wo (local, wo.z > 0) at perceptual roughness r in [0, 1], into out (out.size() taps, in
-// [1, split_sum_taps_max]); alpha = r^2 floored at 1e-4. The same wo, r and count give the same taps.
+// The taps for wo (local) at perceptual roughness r in [0, 1], into out (out.size() taps, in
+// [1, split_sum_taps_max], else std::invalid_argument); alpha = r^2 floored at 1e-4. The same wo, r and count
+// give the same taps; with wo.z <= 0 every tap weighs 0.
 void split_sum_taps(const Vec3& wo, double roughness, std::span<SplitSumTap> out);
 
 struct SplitSumReads {
@@ -49,8 +50,9 @@ struct SplitSumReads {
 };
 
 // read_A and read_B of the chain for wo (in frame's local coordinates) at perceptual roughness r with `taps`
-// taps (in [1, split_sum_taps_max]): each tap read by sample_ggx_chain at frame.to_world(l_i) and r_i. A part
-// whose taps all weigh 0 reads the chain along R at r.
+// taps (in [1, split_sum_taps_max], else std::invalid_argument): each tap computed as split_sum_taps computes
+// it and read by sample_ggx_chain at frame.to_world(l_i) and r_i. A part whose taps all weigh 0 (wo.z <= 0:
+// none do) reads the chain along R at r.
 SplitSumReads split_sum_filtered_reads(const GgxPrefilteredCube& chain, const Frame& frame, const Vec3& wo,
                                        double roughness, int taps);
 

@@ -134,6 +134,24 @@ TEST(SplitSumTaps, EachPartConvergesToItsLobesMeanRadiance) {
   EXPECT_GT(worst_along_r, 0.5);
 }
 
+TEST(SplitSumTaps, AViewBelowTheHorizonReadsAlongR) {
+  // A bent shading normal can put wo below its horizon: no tap weighs anything, both parts read along R, and
+  // nothing is NaN.
+  const CubeMap env = make_cube(16, sky);
+  const GgxPrefilteredCube chain = prefilter_ggx(env, GgxPrefilterOptions{});
+  const Frame frame = Frame::from_normal(normalize(Vec3{0.2, 0.9, 0.1}));
+  for (const Vec3& wo : {Vec3{0.8, 0.0, -0.6}, Vec3{1.0, 0.0, 0.0}}) {
+    std::vector<SplitSumTap> taps(32);
+    split_sum_taps(wo, 0.5, taps);
+    for (const SplitSumTap& t : taps) EXPECT_TRUE(t.weight_a == 0.0 && t.weight_b == 0.0);
+    const SplitSumReads reads = split_sum_filtered_reads(chain, frame, wo, 0.5, 32);
+    const Rgb along_r = sample_ggx_chain(chain, frame.to_world(Vec3{-wo.x, -wo.y, wo.z}), 0.5);
+    EXPECT_EQ(reads.a.r, along_r.r);
+    EXPECT_EQ(reads.b.g, along_r.g);
+    EXPECT_TRUE(std::isfinite(reads.a.r) && std::isfinite(reads.b.b));
+  }
+}
+
 TEST(SplitSumTaps, BadTapCountsThrow) {
   const CubeMap env = make_cube(4, [](const Vec3&) { return Rgb{1.0, 1.0, 1.0}; });
   const GgxPrefilteredCube chain = prefilter_ggx(env, GgxPrefilterOptions{});
