@@ -17,7 +17,8 @@
 // - irradiance_per_texel_sum/32: the per-texel sum over the same 6 x 256^2 input (the peer in this run);
 // - prefilter_chain: the Phong chain 256 .. 1 (9 levels) from 6 x 256^2, with its error against the brute
 //   force per level and the brute-force chain's time extrapolated from measured directions;
-// - prefilter_ggx_chain: the same for the GGX chain (the default lobe sum) against its brute force.
+// - prefilter_ggx_chain: the same for the GGX chain (the default lobe sum) against its brute force;
+// - split_sum_reads/N: the split sum's filtered taps (N per shading point) against one chain read (N = 0).
 //
 //   ./build/release/bench/envmap_bench     (or bench/run.sh for everything with the table)
 #include <benchmark/benchmark.h>
@@ -38,6 +39,7 @@
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/envmap/prefilter_ggx.h"
 #include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/split_sum_taps.h"
 #include "shadelab/envmap/simd.h"
 #include "shadelab/image/image_io.h"
 
@@ -339,6 +341,35 @@ void prefilter_ggx_chain(benchmark::State& state) {
   report_chain(state, k, 1);
 }
 BENCHMARK(prefilter_ggx_chain)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+// The split sum's chain reads per shading point on a 64^2 GGX chain of the HDRI (the game renderer's size):
+// Arg 0, one read along R (Karis 2013 as published; the lobe reads are two such reads), against Arg N, the
+// filtered taps of envmap/split_sum_taps.h (N taps, both parts), over the same 4096 points (N.V, roughness
+// and normal on a fixed grid); items = shading points.
+void split_sum_reads(benchmark::State& state) {
+  static const GgxPrefilteredCube chain = prefilter_ggx(latlong_to_cube(hdri(), 64), GgxPrefilterOptions{});
+  const int taps = static_cast<int>(state.range(0));
+  constexpr int points = 4096;
+  for (auto _ : state) {
+    Rgb sum;
+    for (int i = 0; i < points; ++i) {
+      const double mu = 0.02 + 0.96 * ((i % 64) + 0.5) / 64.0;
+      const double r = 0.05 + 0.95 * ((i / 64) + 0.5) / 64.0;
+      const double phi = 0.37 * i;
+      const Frame frame = Frame::from_normal(normalize(Vec3{std::cos(phi), 0.3, std::sin(phi)}));
+      const Vec3 wo{std::sqrt(1.0 - mu * mu), 0.0, mu};
+      if (taps == 0) {
+        sum += sample_ggx_chain(chain, frame.to_world(Vec3{-wo.x, -wo.y, wo.z}), r);
+      } else {
+        const SplitSumReads reads = split_sum_filtered_reads(chain, frame, wo, r, taps);
+        sum += reads.a + reads.b;
+      }
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations() * points);
+}
+BENCHMARK(split_sum_reads)->Arg(0)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
