@@ -300,6 +300,12 @@ def cli():
         "--help",
         "render --help",
         "--version",
+        # later commands and options (2026-12-06), after the first 36 so that those keep their names
+        "ibl-error env.hdr --out e --roughness 0.5 --bins 2 --size 16 --spp 1 --correction filtered --taps 8",
+        "render small.json --mode game --ggx-specular split-sum --split-sum-lookup filtered --split-sum-taps 4",
+        "bake dfg --size 8 --multiscatter --out d.exr --json",
+        "bake specular env.hdr --lobe ggx --size 8 --levels 3 --out s.ktx2",
+        "bake ibl env.hdr --out-dir ibl --container dds",
     ]
     for i, line in enumerate(lines):
         put("cli", "%02d_%s" % (i, line.split()[0].strip("-")), "\0".join(line.split()))
@@ -357,7 +363,9 @@ def dicts():
     options = set(re.findall(r"--[a-z][a-z0-9-]*", cli_text))
     commands = ["render", "zoo", "brdf", "list", "eval", "albedo", "check", "fresnel", "light", "bake", "irradiance",
                 "sh", "specular", "convert", "compare", "report", "plot", "lobe", "fv", "sheet", "small.json",
-                "env.hdr", "env.exr", "env.png", "tex.png", "cross.exr", "x.exr", "x.png", "x.ktx", "x.json"]
+                "env.hdr", "env.exr", "env.png", "tex.png", "cross.exr", "x.exr", "x.png", "x.ktx", "x.json",
+                "ibl-error", "dfg", "ibl", "merge", "explore", "shader", "verify", "split-sum", "filtered", "lobes",
+                "dominant", "mirror", "ggx", "x.ktx2", "x.dds"]
     write("cli", ["\0" + w for w in sorted(options) + commands])
 
 
