@@ -7,6 +7,7 @@
 
 #include "shadelab/brdf/microfacet.h"
 #include "shadelab/core/constants.h"
+#include "shadelab/kernels/kernels.h"
 #include "shadelab/sampling/sobol.h"
 
 namespace shadelab {
@@ -25,9 +26,10 @@ SplitSumTap make_tap(const Vec3& wo, double alpha, int i, int n) {
   if (!(t.l.z > 0.0) || !(vh > 0.0)) return t;
   const double p = ggx_vndf_bounded_pdf(t.l, wo, alpha, alpha);
   if (!(p > 0.0)) return t;
-  // f cos / p with f cos = D G2 / (4 N.V) per unit F, split by Schlick's Fc = (1 - v.h)^5 (dfg.h).
+  // f cos / p with f cos = D G2 / (4 N.V) per unit F, split by Schlick's Fc = (1 - v.h)^5 (dfg.h), the
+  // kernels' F_schlick at f0 = 0.
   const double w = D_ggx(h.z, alpha) * G2_ggx_correlated(t.l, wo, alpha, alpha) / (4.0 * wo.z * p);
-  const double fc = std::pow(1.0 - vh, 5.0);
+  const double fc = kernel::F_schlick(vh, 0.0);
   t.weight_a = w * (1.0 - fc);
   t.weight_b = w * fc;
   // The tap's share of solid angle 1 / (n p), covered by a chain lobe of solid angle 4 pi alpha_i^2.
