@@ -117,7 +117,7 @@ TEST(CliShBands, BadValuesAreRefused) {
 
 TEST(CliShBands, ErrorReportOnABlenderWorld) {
   const fs::path map = fs::path(SHADELAB_BLENDER_WORLDS) / "sunrise.exr";
-  if (!fs::exists(map)) GTEST_SKIP() << map << " is missing (scripts/setup.sh installs blender-data)";
+  if (!fs::exists(map)) GTEST_FAIL() << map << " is missing (scripts/setup.sh installs blender-data)";
   const auto j = json_of(run("bake sh " + map.string() + " --error-report --json"));
   ASSERT_TRUE(j.contains("error_report"));
   const auto& rows = j["error_report"]["encodings"];
