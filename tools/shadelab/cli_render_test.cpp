@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
+#include <vector>
 #include <sys/wait.h>
 
 #include "cli_run.h"
@@ -55,8 +57,9 @@ TEST(CliRender, BadInput) {
 }
 
 // A ggx sphere (kd 0, roughness 0.6) under a lat-long whose radiance varies with direction: game mode's
-// --ggx-specular and --split-sum-lookup reach the renderer (each changes the image), the default lookup is
-// lobes, and misplaced or unknown values are one line and exit 2.
+// --ggx-specular and --split-sum-lookup reach the renderer (each changes the image), the default is the split
+// sum with the lobes lookup, --json names each material's specular ambient, and misplaced or unknown values are
+// one line and exit 2.
 TEST(CliRender, GgxSpecularSplitSumAndItsLookup) {
   const fs::path env = temp_dir() / "gradient_env.exr";
   shadelab::Image sky(32, 16);
@@ -75,7 +78,8 @@ TEST(CliRender, GgxSpecularSplitSumAndItsLookup) {
     EXPECT_EQ(r.code, 0) << r.err;
     return shadelab::read_image(out).value().data;
   };
-  const auto phong = render("", "ggx_phong.exr");
+  const auto by_default = render("", "ggx_default.exr");
+  const auto phong = render(" --ggx-specular phong", "ggx_phong.exr");
   const auto split = render(" --ggx-specular split-sum", "ggx_split.exr");
   const auto lobes = render(" --ggx-specular split-sum --split-sum-lookup lobes", "ggx_lobes.exr");
   const auto mirror = render(" --ggx-specular split-sum --split-sum-lookup mirror", "ggx_mirror.exr");
@@ -83,6 +87,7 @@ TEST(CliRender, GgxSpecularSplitSumAndItsLookup) {
   const auto filtered64 = render(" --ggx-specular split-sum --split-sum-lookup filtered --split-sum-taps 64", "ggx_f64.exr");
   const auto filtered8 = render(" --ggx-specular split-sum --split-sum-lookup filtered --split-sum-taps 8", "ggx_f8.exr");
   EXPECT_NE(phong, split);
+  EXPECT_EQ(by_default, lobes);  // the split sum with the lobes lookup is the default
   EXPECT_EQ(split, lobes);  // lobes is the default lookup
   EXPECT_NE(lobes, mirror);
   EXPECT_NE(lobes, filtered);
@@ -90,8 +95,21 @@ TEST(CliRender, GgxSpecularSplitSumAndItsLookup) {
   EXPECT_NE(filtered, filtered8);
   expect_usage_error("render " + scene.string() + " --ggx-specular split-sum", "--ggx-specular applies to --mode game");
   expect_usage_error("render " + scene.string() + " --mode game --ggx-specular ggx", "--ggx-specular: 'ggx' is not one of");
-  expect_usage_error("render " + scene.string() + " --mode game --split-sum-lookup mirror",
+  expect_usage_error("render " + scene.string() + " --mode game --ggx-specular phong --split-sum-lookup mirror",
                      "--split-sum-lookup applies to --ggx-specular split-sum");
+  // --json: each material's specular ambient, and the lookup of a split-sum one.
+  const std::vector<std::pair<std::string, std::string>> json_cases{{"", "split-sum"}, {" --ggx-specular phong", "phong-chain"}};
+  for (const auto& [flags, want] : json_cases) {
+    const auto r = run("render " + scene.string() + " --mode game --spp 1 --specular-size 16 --no-png --json --out " +
+                       (temp_dir() / "ggx_json.exr").string() + flags);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j.at("materials").size(), 1u) << r.out;
+    EXPECT_EQ(j["materials"][0].at("material"), "m");
+    EXPECT_EQ(j["materials"][0].at("model"), "ggx");
+    EXPECT_EQ(j["materials"][0].at("specular_ambient"), want) << flags;
+    EXPECT_EQ(j["materials"][0].contains("split_sum_lookup"), want == "split-sum");
+  }
   expect_usage_error("render " + scene.string() + " --mode game --ggx-specular split-sum --split-sum-lookup up",
                      "--split-sum-lookup: 'up' is not one of");
   expect_usage_error("render " + scene.string() + " --mode game --ggx-specular split-sum --split-sum-taps 8",

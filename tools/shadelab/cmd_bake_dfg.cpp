@@ -17,6 +17,7 @@
 #include "shadelab/envmap/ktx2.h"
 #include "shadelab/image/image.h"
 #include "shadelab/image/image_io.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab::cli {
 
@@ -123,7 +124,7 @@ void run_dfg(const DfgCliOptions& o, const std::vector<std::string>& given) {
       for (int i = 0; i < t.size; i += step) {
         const double mu = (i + 0.5) / t.size;
         const double r = (j + 0.5) / t.size;
-        const DfgValue q = dfg_quadrature(mu, r * r);
+        const DfgValue q = dfg_quadrature(mu, kernel::alpha_from_roughness(r));
         sampling_error = std::max({sampling_error, std::abs(q.a - t.at(i, j, 0)), std::abs(q.b - t.at(i, j, 1))});
       }
     }

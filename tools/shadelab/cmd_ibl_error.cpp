@@ -12,6 +12,7 @@
 
 #include "cli_common.h"
 #include "ibl_error_page.h"
+#include "shadelab/brdf/registry.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/image/metrics.h"
 #include "shadelab/envmap/split_sum_taps.h"
@@ -58,8 +59,8 @@ void run_ibl_error(const IblErrorCliOptions& o) {
   for (const double r : o.roughness) {
     if (!(r > 0.0 && r <= 1.0)) throw UsageError(fmt::format("--roughness: {} is not in (0, 1]", r));
   }
-  if (o.model != "ggx" && o.model != "filament") {
-    throw UsageError("--model: '" + o.model + "' has no split-sum specular ambient (ggx, filament)");
+  if (const ModelInfo* m = find_brdf_model(o.model); m == nullptr || !m->split_sum_sweep) {
+    throw UsageError("--model: '" + o.model + "' has no split-sum specular ambient (" + split_sum_model_names() + ")");
   }
   const std::uint64_t seed = parse_seed("--seed", o.seed);
   const std::filesystem::path dir(o.out);

@@ -76,7 +76,7 @@ struct RenderCliOptions {
   int env_size = 64;       // game mode: face size the environment is baked at (GameOptions::environment_size)
   int specular_size = 64;  // game mode: face size of the prefiltered cube's level 0
   bool env_size_given = false, specular_size_given = false;
-  std::string ggx_specular = "phong";      // game mode: GameOptions::ggx_specular
+  std::string ggx_specular = "split-sum";  // game mode: GameOptions::ggx_specular
   std::string split_sum_lookup = "lobes";  // game mode: GameOptions::split_sum_direction
   bool ggx_specular_given = false, split_sum_lookup_given = false;
   int split_sum_taps = 64;  // game mode, --split-sum-lookup filtered: GameOptions::split_sum_taps
@@ -304,12 +304,25 @@ void run_render(const RenderCliOptions& o) {
   if (o.json) {
     nlohmann::json files = nlohmann::json::array();
     for (const auto& p : written) files.push_back(p.string());
-    print_json({{"scene", scene.source}, {"mode", o.mode}, {"outputs", files}, {"width", scene.camera.width},
-                {"height", scene.camera.height}, {"spp", st.spp_done}, {"interrupted", interrupted},
-                {"nonfinite_samples", st.nonfinite_samples},
-                {"seconds", st.seconds}, {"render_seconds", st.render_seconds}, {"rays", st.rays},
-                {"samples_per_second", pixels * st.spp_done / std::max(1e-9, st.seconds)},
-                {"rays_per_second", static_cast<double>(st.rays) / std::max(1e-9, st.seconds)}});
+    nlohmann::json summary{{"scene", scene.source}, {"mode", o.mode}, {"outputs", files}, {"width", scene.camera.width},
+                           {"height", scene.camera.height}, {"spp", st.spp_done}, {"interrupted", interrupted},
+                           {"nonfinite_samples", st.nonfinite_samples},
+                           {"seconds", st.seconds}, {"render_seconds", st.render_seconds}, {"rays", st.rays},
+                           {"samples_per_second", pixels * st.spp_done / std::max(1e-9, st.seconds)},
+                           {"rays_per_second", static_cast<double>(st.rays) / std::max(1e-9, st.seconds)}};
+    if (o.mode == "game") {
+      // Per material, the specular ambient it was shaded with (and the split sum's lookup).
+      const auto ambients = unwrap(game_specular_ambients(scene, go));
+      nlohmann::json materials = nlohmann::json::array();
+      for (std::size_t i = 0; i < ambients.size(); ++i) {
+        nlohmann::json m{{"material", scene.materials[i].name}, {"model", scene.materials[i].model},
+                         {"specular_ambient", game_specular_ambient_name(ambients[i])}};
+        if (ambients[i] == GameSpecularAmbient::split_sum) m["split_sum_lookup"] = o.split_sum_lookup;
+        materials.push_back(std::move(m));
+      }
+      summary["materials"] = std::move(materials);
+    }
+    print_json(summary);
   } else {
     fmt::print("{}: {} x {}, {} spp in {:.2f} s ({:.3g} samples/s, {:.3g} rays/s){}\n", scene.source,
                scene.camera.width, scene.camera.height, st.spp_done, st.seconds,
@@ -356,8 +369,8 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_option("--specular-size", o->specular_size, "game mode: face size of the prefiltered specular cube's level 0 (a power of two)")
       ->capture_default_str();
   sub->add_option("--ggx-specular", o->ggx_specular,
-                  "game mode: the specular ambient of ggx and filament materials: phong (the Phong chain, as the "
-                  "explorer shades them) or split-sum (GGX chain x DFG table)")
+                  "game mode: the specular ambient of ggx and filament materials: split-sum (GGX chain x DFG "
+                  "table, the default) or phong (the Phong chain, as the explorer still shades them)")
       ->capture_default_str();
   sub->add_option("--split-sum-lookup", o->split_sum_lookup,
                   "game mode, --ggx-specular split-sum: lobes (each part at its lobe's first moments), dominant "

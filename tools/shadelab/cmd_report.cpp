@@ -11,6 +11,10 @@
 //   full:         the scene as given, reference at full depth: adds interreflection and area lights, which
 //                 game shading leaves out or approximates.
 //
+// Each material's row names the specular ambient the game renderer gave it (split-sum, phong-chain, none); the
+// materials the split sum shades (the default for ggx and filament since 2026-12-07) also get, from a second
+// game render in the same run, their figures with the Phong chain they had before ("phong_chain" in the JSON,
+// the last column of the page's tables).
 // Each wrapped-diffuse material gets its expected environment mismatch stated beside the measured one: the
 // SH wrap factors (1, (2 - w)/3, (1 - w)^2/4) are the bands of the wrap kernel (cos + w)/(pi (1 + w)^2) over
 // every direction with cos > -w, but the BRDF is 0 below the horizon, so under a uniform environment game
@@ -18,12 +22,14 @@
 // samples is reported (stderr, "nonfinite_samples") and the command exits with 1.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "cli_common.h"
 #include "shadelab/core/text.h"
@@ -185,6 +191,18 @@ void run_report(const ReportOptions& o) {
     GameOptions go;
     auto game = render_game(s, go);
     if (!game) throw UsageError(scene.source + ": " + game.error().message);
+    // The materials the split sum shades by default, shown beside what the Phong chain gave them (the default
+    // before 2026-12-07): the same game render with GameGgxSpecular::phong, in the same run.
+    const auto ambients = unwrap(game_specular_ambients(s, go));
+    std::optional<RenderResult> before;
+    if (std::find(ambients.begin(), ambients.end(), GameSpecularAmbient::split_sum) != ambients.end()) {
+      GameOptions phong = go;
+      phong.ggx_specular = GameGgxSpecular::phong;
+      auto r = render_game(s, phong);
+      if (!r) throw UsageError(scene.source + ": " + r.error().message);
+      nonfinite += r->stats.nonfinite_samples;
+      before = std::move(r).value();
+    }
     nonfinite += ref->stats.nonfinite_samples + game->stats.nonfinite_samples;
     bar.update((k + 1) / 3.0);
     CompareOptions co;
@@ -204,9 +222,17 @@ void run_report(const ReportOptions& o) {
       if (f.pixels == 0) continue;
       nlohmann::json entry = {{"material", scene.materials[m].name}, {"model", scene.materials[m].model}, {"pixels", f.pixels},
                               {"rmse", f.rmse}, {"relative_mse", f.relative_mse}, {"luminance_ratio", f.luminance_ratio}};
+      entry["specular_ambient"] = game_specular_ambient_name(ambients[m]);
+      std::string phong_cell = "";
+      if (before && ambients[m] == GameSpecularAmbient::split_sum) {
+        const MaskedFigures b = masked(before->beauty, ref->beauty, ids, static_cast<int>(m));
+        entry["phong_chain"] = {{"rmse", b.rmse}, {"relative_mse", b.relative_mse}, {"luminance_ratio", b.luminance_ratio}};
+        phong_cell = fmt::format("{:.4f}", b.luminance_ratio);
+      }
       std::string note;
-      if (const auto* wd = dynamic_cast<const WrappedDiffuse*>(scene.materials[m].brdf.get()); wd != nullptr && kind == "environment") {
-        const double w = wd->wrap();
+      const Brdf* material_brdf = scene.materials[m].brdf.get();
+      if (material_brdf != nullptr && material_brdf->game_wrap() > 0.0 && kind == "environment") {
+        const double w = material_brdf->game_wrap();
         const double ratio = wrap_uniform_reference_over_game(w);
         entry["wrap"] = {{"w", w}, {"uniform_reference_over_game", ratio}, {"uniform_luminance_ratio", 1.0 / ratio}};
         note = fmt::format(" (wrap w = {:.3g}: under a uniform environment game kd, reference kd (1+2w)/(1+w)^2 = {:.4f} kd; "
@@ -217,9 +243,10 @@ void run_report(const ReportOptions& o) {
                                          scene.materials[m].name, w, ratio, 1.0 / ratio, f.luminance_ratio));
       }
       materials.push_back(entry);
-      rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4f}{}</td></tr>\n",
-                          xml_escape(scene.materials[m].name), xml_escape(scene.materials[m].model), f.pixels, f.rmse,
-                          f.relative_mse, f.luminance_ratio, xml_escape(note));
+      rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4f}{}</td><td>{}</td></tr>\n",
+                          xml_escape(scene.materials[m].name), xml_escape(scene.materials[m].model),
+                          game_specular_ambient_name(ambients[m]), f.pixels, f.rmse, f.relative_mse, f.luminance_ratio,
+                          xml_escape(note), phong_cell);
     }
     sections.push_back({{"lighting", kind}, {"rmse", d.rmse}, {"relative_mse", d.relative_mse}, {"max_error", d.max_abs_error},
                         {"luminance_ratio", d.mean_luminance_ratio}, {"ssim", std::isfinite(d.ssim) ? nlohmann::json(d.ssim) : nlohmann::json(nullptr)},
@@ -229,7 +256,8 @@ void run_report(const ReportOptions& o) {
         "(reference: {} spp).</p>\n<div class=row><figure><img src=\"{}_reference.png\"><figcaption>reference (path tracer)</figcaption></figure>"
         "<figure><img src=\"{}_game.png\"><figcaption>game shading</figcaption></figure>"
         "<figure><img src=\"{}_heatmap.png\"><figcaption>relative error, white = {:.3g}</figcaption></figure></div>\n"
-        "<table><tr><th>material</th><th>model</th><th>pixels</th><th>RMSE</th><th>relative MSE</th><th>luminance game/ref</th></tr>\n{}</table>\n",
+        "<table><tr><th>material</th><th>model</th><th>specular ambient</th><th>pixels</th><th>RMSE</th><th>relative MSE</th><th>luminance game/ref</th>"
+        "<th>luminance game/ref with the Phong chain (before 2026-12-07)</th></tr>\n{}</table>\n",
         kind, d.rmse, d.relative_mse, d.max_abs_error, d.mean_luminance_ratio, d.ssim, ref->stats.spp_done, kind, kind, kind,
         heat.scale, rows);
   }

@@ -11,6 +11,7 @@
 // Sampling: H from the power-cosine lobe (n+1)/(2 pi) (N.H)^n, L = reflect(V, H); pdf = p_H / (4 V.H).
 #pragma once
 
+#include "shadelab/brdf/gloss.h"
 #include "shadelab/brdf/layered.h"
 #include "shadelab/kernels/kernels.h"
 
@@ -24,6 +25,9 @@ class BlinnPhong final : public LayeredBrdf {
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::blinn_phong_eval(m_k, wi, wo); }
   bool is_reciprocal() const override { return m_modified || m_ks.is_black(); }
   std::optional<KernelBinding> kernel_binding() const override;
+  // (N.H)^n: the Phong lobe of n/4 (brdf/gloss.h); a gloss map's exponent is a Blinn-Phong one.
+  double game_phong_exponent() const override { return phong_exponent_from_blinn_phong(m_n); }
+  bool gloss_exponent_is_blinn_phong() const override { return true; }
   static double normalization_factor(double n, Normalization normalization, bool modified);
 
  protected:

@@ -26,6 +26,11 @@
 
 namespace shadelab {
 
+namespace kernel {
+struct FilamentState;
+struct GgxState;
+}  // namespace kernel
+
 struct BrdfSample {
   Vec3 wi{0.0, 0.0, 1.0};
   double pdf = 0.0;  // per unit solid angle
@@ -57,6 +62,22 @@ struct KernelBinding {
     fields.push_back({std::move(name), std::move(v)});
     return *this;
   }
+};
+
+// What the split-sum specular ambient (kernels/game_ambient.sl game_split_sum_specular) needs of a
+// microfacet-GGX BRDF, read from the BRDF itself (so a textured hit's own roughness and f0 are used):
+// - roughness: the perceptual roughness sqrt(alpha) (perceptual_roughness_from_alpha, microfacet.h), alpha =
+//   sqrt(alpha_x alpha_y) for an anisotropic lobe (an approximation, as engines do);
+// - f0, f90: Schlick's reflectance at normal incidence and at grazing, times the model's specular tint;
+// - the energy terms the model adds, evaluated by the renderer with E = A + B of its DFG table: a multiplicative
+//   compensation 1 + f0 (1/E - 1) (kernels/filament.sl filament_energy_compensation) or a Kulla-Conty lobe
+//   (kernels/ggx_energy.sl ggx_ms_albedo): the state that holds its numbers, or null.
+struct SplitSumInputs {
+  double roughness = 0.0;
+  Rgb f0;
+  Rgb f90;
+  const kernel::FilamentState* filament = nullptr;  // multiplicative energy compensation on: its state
+  const kernel::GgxState* ggx_ms = nullptr;          // Kulla-Conty lobe on: its state
 };
 
 // The direction test of eval_batch_checked and of the Python module's direction rule: |v|^2 within 4 ulp of
@@ -110,6 +131,20 @@ class Brdf {
   // The kernel this model's eval is and its parameter values (see KernelBinding); every registered model
   // has one (the shader tests check), test doubles need none.
   virtual std::optional<KernelBinding> kernel_binding() const { return std::nullopt; }
+
+  // What game shading's environment lighting asks of a model (render/game_renderer.h, brdf/game_lobe.h), each
+  // answered by the model itself so that no renderer or front end switches on a model's name:
+  // - game_phong_exponent(): the Phong exponent n whose lobe (R.L)^n matches the model's specular lobe, which
+  //   picks the Phong chain's level (the conversions per model: brdf/game_lobe.h); 0 for no specular lobe.
+  // - gloss_exponent_is_blinn_phong(): whether a gloss map's exponent is a Blinn-Phong (N.H)^n one (the
+  //   renderer then takes n/4 for the Phong chain, brdf/gloss.h).
+  // - game_wrap(): the wrap w of a wrapped diffuse lobe, which the SH9 ambient applies by its band factors.
+  // - split_sum_inputs(): the split-sum description of a microfacet-GGX model (f0, f90, roughness, energy
+  //   terms; SplitSumInputs below), nullopt for a model that engines shade with the Phong chain.
+  virtual double game_phong_exponent() const { return 0.0; }
+  virtual bool gloss_exponent_is_blinn_phong() const { return false; }
+  virtual double game_wrap() const { return 0.0; }
+  virtual std::optional<SplitSumInputs> split_sum_inputs() const { return std::nullopt; }
 
  protected:
   // eval_batch (check_unit false) and eval_batch_checked (true). Every registered model overrides it with

@@ -78,6 +78,8 @@ Vec3 CookTorrance::specular_sample(const Vec3& wo, Vec2 u, double) const {
 ModelInfo cook_torrance_model() {
   ModelInfo info;
   info.name = "cook-torrance";
+  // With Schlick's Fresnel the specular colour is f0 (ks is then a plain scale).
+  info.ks_texture_param = [](const ParamValues& p) { return std::string(p.choice("f") == "schlick" ? "f0" : "ks"); };
   info.summary = "kd/pi + ks F D G / (4 N.L N.V)   (form=1981: F D' G / (pi N.L N.V), D' = pi D)";
   info.source = "Cook & Torrance 1981; lecture 5 'Cook-Torrance BRDF Model'; Walter et al. 2007";
   info.params = {

@@ -16,6 +16,7 @@
 // pdf = D cos(theta_h) / (4 V.H).
 #pragma once
 
+#include "shadelab/brdf/gloss.h"
 #include "shadelab/brdf/layered.h"
 #include "shadelab/kernels/kernels.h"
 
@@ -46,6 +47,10 @@ class CookTorrance final : public LayeredBrdf {
   explicit CookTorrance(const Params& p);
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::cook_torrance_eval(m_k, wi, wo); }
   std::optional<KernelBinding> kernel_binding() const override;
+  // The Blinn-Phong exponent n (given, or 2/m^2 - 2 of the Beckmann m) as a Phong lobe of n/4 (brdf/gloss.h);
+  // a gloss map's exponent is a Blinn-Phong one.
+  double game_phong_exponent() const override { return phong_exponent_from_blinn_phong(m_p.n); }
+  bool gloss_exponent_is_blinn_phong() const override { return true; }
 
   Rgb fresnel(double cos_i) const;
   double distribution(double cos_h) const;

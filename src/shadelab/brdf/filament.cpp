@@ -35,6 +35,17 @@ std::optional<KernelBinding> Filament::kernel_binding() const {
       .add("energy_compensation", p.energy_compensation);
 }
 
+// The split sum's inputs (brdf.h SplitSumInputs): roughness sqrt(alpha), its f0 and f90 = 1, and the
+// multiplicative energy compensation when it is on.
+std::optional<SplitSumInputs> Filament::split_sum_inputs() const {
+  SplitSumInputs in;
+  in.roughness = perceptual_roughness_from_alpha(m_k.alpha);
+  in.f0 = Rgb(m_k.f0);
+  in.f90 = Rgb::gray(1.0);
+  if (m_k.energy_compensation == 1) in.filament = &m_k;
+  return in;
+}
+
 bool Filament::is_reciprocal() const { return !(m_p.energy_compensation && Rgb(m_k.f0).max_component() > 0.0); }
 
 double Filament::specular_pdf(const Vec3& wi, const Vec3& wo) const {
@@ -48,6 +59,7 @@ Vec3 Filament::specular_sample(const Vec3& wo, Vec2 u, double) const {
 ModelInfo filament_model() {
   ModelInfo info;
   info.name = "filament";
+  info.split_sum_sweep = SplitSumSweep{"perceptual_roughness", "metallic", "1"};
   info.summary = "(1-metallic) base_color Fd + D_GGX V_SmithGGXCorrelated F_Schlick(f0) [x (1 + f0 (1/E(N.V) - 1))]";
   info.source = "Filament documentation, 'Material system' (standard model, energy compensation)";
   info.params = {

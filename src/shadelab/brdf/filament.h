@@ -15,6 +15,7 @@
 #pragma once
 
 #include "shadelab/brdf/layered.h"
+#include "shadelab/brdf/microfacet.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
@@ -39,6 +40,8 @@ class Filament final : public LayeredBrdf {
   bool pdf_smooth_below_horizon() const override { return false; }
   bool is_reciprocal() const override;
   std::optional<KernelBinding> kernel_binding() const override;
+  double game_phong_exponent() const override { return phong_exponent_from_ggx_alpha(m_k.alpha); }
+  std::optional<SplitSumInputs> split_sum_inputs() const override;
   const kernel::FilamentState& state() const { return m_k; }
 
  protected:

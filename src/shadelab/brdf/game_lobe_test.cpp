@@ -145,20 +145,93 @@ TEST(GameKernels, DisplayTransform) {
 TEST(GameLobe, PhongSpecularAlbedoAtNormalViewIsTheZoosClosedForm) {
   // Modified Phong, f = ks (n + 2)/(2 pi) cos^n(alpha): at normal view the mirror direction is the normal
   // and the albedo is ks (n + 2)/(2 pi) int cos^(n+1) dw = ks (n + 2)/(2 pi) 2 pi/(n + 2) = ks.
-  const ModelInfo* model = find_brdf_model("phong-modified");
-  ASSERT_NE(model, nullptr);
-  auto values = parse_params(model->name, model->params, {{"kd", "0"}, {"ks", "0.5"}, {"n", "50"}});
-  ASSERT_TRUE(values.has_value()) << values.error().message;
-  auto f = model->create(*values);
-  ASSERT_TRUE(f.has_value());
-  const GameLobe lobe = game_lobe(model->name, *values, **f);
+  auto f = make_brdf("phong-modified", {{"kd", "0"}, {"ks", "0.5"}, {"n", "50"}});
+  ASSERT_TRUE(f.has_value()) << f.error().message;
+  const GameLobe lobe = game_lobe(**f);
   EXPECT_EQ(lobe.exponent, 50.0);
   EXPECT_FALSE(lobe.blinn_like);
   // The last bin is at cos theta_o = 1 - 1/64: the lobe of n = 50 is still all above the horizon there.
   const Rgb rho = lobe.specular_albedo.back();
   EXPECT_NEAR(rho.r, 0.5, 0.02);
-  EXPECT_EQ(game_phong_exponent("blinn-phong", *values), 12.5);  // Blinn-Phong n / 4
-  EXPECT_EQ(game_phong_exponent("lambert", *values), 0.0);
+}
+
+// Each model answers for itself (brdf.h: game_phong_exponent, gloss_exponent_is_blinn_phong, game_wrap,
+// split_sum_inputs); the expected values are the conversions written out here from the parameters: a Phong
+// lobe keeps n, a Blinn-Phong (N.H)^n lobe is n/4, a Beckmann m (or Ward's alpha, GGX's alpha) is the
+// Blinn-Phong n = 2/m^2 - 2, perceptual roughness r is alpha = r^2.
+TEST(GameLobe, EachModelAnswersItsChainExponentGlossKindWrapAndSplitSum) {
+  struct Case {
+    const char* model;
+    ParamAssignments params;
+    double exponent;
+    bool blinn_like;
+    double wrap;
+    bool split_sum;
+  };
+  auto blinn_of_m = [](double m) { return (2.0 / (m * m) - 2.0) / 4.0; };
+  const std::vector<Case> cases = {
+      {"lambert", {}, 0.0, false, 0.0, false},
+      {"phong", {{"n", "40"}}, 40.0, false, 0.0, false},
+      {"phong-modified", {{"n", "50"}}, 50.0, false, 0.0, false},
+      {"blinn-phong", {{"n", "50"}}, 12.5, true, 0.0, false},
+      {"blinn-phong-modified", {{"n", "300"}}, 75.0, true, 0.0, false},
+      {"minimalist-cook-torrance", {{"n", "64"}}, 16.0, true, 0.0, false},
+      {"cook-torrance", {{"m", "0.2"}}, blinn_of_m(0.2), true, 0.0, false},
+      {"cook-torrance", {{"n", "100"}}, 25.0, true, 0.0, false},
+      {"ward", {{"alpha", "0.2"}}, blinn_of_m(0.2), false, 0.0, false},
+      {"ward-anisotropic", {{"alpha_x", "0.1"}, {"alpha_y", "0.3"}}, blinn_of_m(0.2), false, 0.0, false},
+      {"lafortune", {{"lobes", "-1,-1,1,30"}}, 30.0, false, 0.0, false},
+      {"wrapped-diffuse", {{"w", "0.4"}}, 0.0, false, 0.4, false},
+      {"burley", {}, 0.0, false, 0.0, false},
+      {"ggx", {{"roughness", "0.5"}}, blinn_of_m(0.25), false, 0.0, true},
+      {"ggx", {{"alpha_x", "0.1"}, {"alpha_y", "0.4"}}, blinn_of_m(0.2), false, 0.0, true},
+      {"filament", {{"perceptual_roughness", "0.5"}}, blinn_of_m(0.25), false, 0.0, true},
+  };
+  for (const Case& c : cases) {
+    auto f = make_brdf(c.model, c.params);
+    ASSERT_TRUE(f.has_value()) << c.model << ": " << f.error().message;
+    EXPECT_NEAR((*f)->game_phong_exponent(), c.exponent, 1e-12 * (1.0 + c.exponent)) << c.model;
+    EXPECT_EQ((*f)->gloss_exponent_is_blinn_phong(), c.blinn_like) << c.model;
+    EXPECT_EQ((*f)->game_wrap(), c.wrap) << c.model;
+    EXPECT_EQ((*f)->split_sum_inputs().has_value(), c.split_sum) << c.model;
+  }
+  // The split sum's inputs: roughness sqrt(alpha) (the geometric mean of an anisotropic pair), f0 and f90.
+  const auto g = (*make_brdf("ggx", {{"alpha_x", "0.1"}, {"alpha_y", "0.4"}, {"f", "schlick"}, {"f0", "0.04"}, {"ks", "0.5"}}))
+                     ->split_sum_inputs();
+  ASSERT_TRUE(g.has_value());
+  EXPECT_NEAR(g->roughness, std::sqrt(0.2), 1e-15);
+  EXPECT_NEAR(g->f0.g, 0.02, 1e-15);  // ks f0
+  EXPECT_EQ(g->f90.g, 0.5);           // ks
+  EXPECT_EQ(g->ggx_ms, nullptr);
+  const auto m = (*make_brdf("filament", {{"perceptual_roughness", "0.3"}, {"metallic", "1"}, {"base_color", "0.9,0.6,0.3"}}))
+                     ->split_sum_inputs();
+  ASSERT_TRUE(m.has_value());
+  EXPECT_NEAR(m->roughness, 0.3, 1e-15);
+  EXPECT_NEAR(m->f0.b, 0.3, 1e-15);  // a metal's f0 is its base colour
+  EXPECT_EQ(m->f90.r, 1.0);
+  EXPECT_NE(m->filament, nullptr);  // energy compensation is on by default
+}
+
+// The registry's split-sum sweep (ibl-error's rows) is declared by exactly the models whose BRDFs answer
+// split_sum_inputs(), and its roughness parameter is a parameter of the model that moves the answer.
+TEST(GameLobe, TheSplitSumSweepIsDeclaredByTheModelsThatTakeTheSplitSum) {
+  int declared = 0;
+  for (const ModelInfo& info : brdf_models()) {
+    auto f = make_brdf(info.name);
+    ASSERT_TRUE(f.has_value()) << info.name;
+    EXPECT_EQ(info.split_sum_sweep.has_value(), (*f)->split_sum_inputs().has_value()) << info.name;
+    if (!info.split_sum_sweep) continue;
+    ++declared;
+    const SplitSumSweep& s = *info.split_sum_sweep;
+    auto rough = make_brdf(info.name, {{s.roughness_param, "0.7"}});
+    ASSERT_TRUE(rough.has_value()) << info.name << " " << s.roughness_param;
+    EXPECT_NEAR((*rough)->split_sum_inputs()->roughness, 0.7, 1e-15) << info.name;
+    auto alone = make_brdf(info.name, {{s.specular_only_param, s.specular_only_value}});
+    ASSERT_TRUE(alone.has_value()) << info.name << " " << s.specular_only_param;
+    EXPECT_EQ((*alone)->diffuse_albedo().max_component(), 0.0) << info.name << ": the specular lobe alone";
+  }
+  EXPECT_GE(declared, 2);
+  EXPECT_EQ(split_sum_model_names(), "ggx, filament");
 }
 
 }  // namespace

@@ -60,6 +60,20 @@ std::optional<KernelBinding> Ggx::kernel_binding() const {
       .add("ms", p.ms);
 }
 
+// The split sum's inputs (brdf.h SplitSumInputs): roughness sqrt(sqrt(alpha_x alpha_y)); f0 the model's own
+// Fresnel at normal incidence (fresnel.sl F_by_kind_rgb at cos = 1: Schlick's f0, 1 for f = none, the exact F(0)
+// of a dielectric or conductor, for which the DFG table's Schlick is then an approximation) times ks; f90 = ks;
+// the Kulla-Conty lobe when it is on. The DFG table is the height-correlated G2: with g = smith-separable the
+// split sum uses it anyway (an approximation).
+std::optional<SplitSumInputs> Ggx::split_sum_inputs() const {
+  SplitSumInputs in;
+  in.roughness = perceptual_roughness_from_alpha(std::sqrt(m_p.alpha_x * m_p.alpha_y));
+  in.f0 = m_p.ks * Rgb(kernel::F_by_kind_rgb(static_cast<int>(m_p.f), 1.0, m_p.ior, m_p.k, m_p.f0));
+  in.f90 = m_p.ks;
+  if (m_p.ms == MultipleScattering::kulla_conty) in.ggx_ms = &m_k;
+  return in;
+}
+
 double Ggx::specular_pdf(const Vec3& wi, const Vec3& wo) const {
   switch (m_p.sampler) {
     case Sampler::ndf: return ggx_ndf_pdf(wi, wo, m_p.alpha_x, m_p.alpha_y);
@@ -84,6 +98,7 @@ Vec3 Ggx::specular_sample(const Vec3& wo, Vec2 u, double) const {
 ModelInfo ggx_model() {
   ModelInfo info;
   info.name = "ggx";
+  info.split_sum_sweep = SplitSumSweep{"roughness", "kd", "0"};
   info.summary = "kd/pi + ks F D_GGX G2 / (4 N.L N.V)  [+ (1-E(mu_o))(1-E(mu_i)) F_ms / (pi (1-E_avg)) with ms=kulla-conty]";
   info.source = "Walter et al. 2007; Heitz 2014 (Smith G); Kulla & Conty 2017 (ms); Heitz 2018, Dupuy & Benyoub 2023, "
                 "Eto & Tokuyoshi 2023 (samplers)";
@@ -120,7 +135,7 @@ ModelInfo ggx_model() {
       q.alpha_x = p.scalar("alpha_x");
       q.alpha_y = p.scalar("alpha_y");
     } else if (p.is_set("roughness")) {
-      q.alpha_x = q.alpha_y = p.scalar("roughness") * p.scalar("roughness");
+      q.alpha_x = q.alpha_y = alpha_from_perceptual_roughness(p.scalar("roughness"));
     } else {
       q.alpha_x = q.alpha_y = p.scalar("alpha");
     }

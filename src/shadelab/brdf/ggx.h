@@ -26,6 +26,7 @@
 #pragma once
 
 #include "shadelab/brdf/layered.h"
+#include "shadelab/brdf/microfacet.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
@@ -59,6 +60,9 @@ class Ggx final : public LayeredBrdf {
   // The visible-normal samplers' densities jump at their support's edge below the horizon (brdf.h).
   bool pdf_smooth_below_horizon() const override { return false; }
   std::optional<KernelBinding> kernel_binding() const override;
+  // GGX's alpha (the geometric mean of alpha_x and alpha_y) as a Beckmann m (microfacet.h).
+  double game_phong_exponent() const override { return phong_exponent_from_ggx_alpha(std::sqrt(m_p.alpha_x * m_p.alpha_y)); }
+  std::optional<SplitSumInputs> split_sum_inputs() const override;
 
   const Params& params() const { return m_p; }
   const kernel::GgxState& state() const { return m_k; }

@@ -32,6 +32,7 @@ class Lafortune final : public LayeredBrdf {
   Lafortune(const Rgb& kd, const Rgb& ks, std::vector<Lobe> lobes);
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::lafortune_eval(m_k, wi, wo); }
   std::optional<KernelBinding> kernel_binding() const override;
+  double game_phong_exponent() const override { return m_lobes.front().n; }  // the first lobe's
 
  protected:
   std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shadelab/brdf/gloss.h"
 #include "shadelab/core/constants.h"
 #include "shadelab/core/vec.h"
 #include "shadelab/kernels/kernels.h"
@@ -35,6 +36,18 @@ using kernel::V_smith_ggx_correlated;
 // Blinn-Phong and Beckmann distributions nearly coincide.
 inline double beckmann_m_from_exponent(double n) { return std::sqrt(2.0 / (n + 2.0)); }
 inline double exponent_from_beckmann_m(double m) { return 2.0 / (m * m) - 2.0; }
+
+// Perceptual roughness r and GGX alpha: alpha = r^2 (Burley 2012, "Physically-Based Shading at Disney",
+// section 5.4; Karis 2013): the library's one conversion (kernels/microfacet.sl alpha_from_roughness).
+inline double alpha_from_perceptual_roughness(double r) { return kernel::alpha_from_roughness(r); }
+inline double perceptual_roughness_from_alpha(double alpha) { return std::sqrt(alpha); }
+
+// The Phong exponent whose (R.L)^n lobe matches a GGX lobe of roughness alpha: GGX's alpha is a roughness
+// like Beckmann's m (both the RMS slope's scale; Walter et al. 2007 section 5.2), m -> Blinn-Phong n =
+// 2/m^2 - 2, and a Blinn-Phong (N.H)^n lobe is a Phong one of n/4 (brdf/gloss.h).
+inline double phong_exponent_from_ggx_alpha(double alpha) {
+  return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(alpha));
+}
 
 // Sampling H with density D(h) cos(theta_h) for Beckmann: tan^2(theta) = -m^2 ln(1 - u) (Walter et al. 2007
 // eq. 28).

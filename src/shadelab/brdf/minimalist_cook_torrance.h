@@ -8,6 +8,7 @@
 // Sampling: H from the power-cosine lobe (n+1)/(2pi) (N.H)^n, pdf = p_H / (4 V.H).
 #pragma once
 
+#include "shadelab/brdf/gloss.h"
 #include "shadelab/brdf/layered.h"
 #include "shadelab/kernels/kernels.h"
 
@@ -20,6 +21,9 @@ class MinimalistCookTorrance final : public LayeredBrdf {
     return kernel::minimalist_cook_torrance_eval(m_k, wi, wo);
   }
   std::optional<KernelBinding> kernel_binding() const override;
+  // (N.H)^n: the Phong lobe of n/4 (brdf/gloss.h); a gloss map's exponent is a Blinn-Phong one.
+  double game_phong_exponent() const override { return phong_exponent_from_blinn_phong(m_n); }
+  bool gloss_exponent_is_blinn_phong() const override { return true; }
 
  protected:
   std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {

@@ -24,6 +24,7 @@ class Phong final : public LayeredBrdf {
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::phong_eval(m_k, wi, wo); }
   bool is_reciprocal() const override { return m_modified || m_ks.is_black(); }
   std::optional<KernelBinding> kernel_binding() const override;
+  double game_phong_exponent() const override { return m_n; }  // the lobe is (R.L)^n
   // The constant N in front of the lobe.
   static double normalization_factor(double n, Normalization normalization, bool modified);
 

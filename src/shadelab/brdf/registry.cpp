@@ -31,6 +31,14 @@ const ModelInfo* find_brdf_model(std::string_view name) {
   return nullptr;
 }
 
+std::string split_sum_model_names() {
+  std::string list;
+  for (const auto& m : brdf_models()) {
+    if (m.split_sum_sweep) list += (list.empty() ? "" : ", ") + m.name;
+  }
+  return list;
+}
+
 Result<BrdfPtr> make_brdf(std::string_view name, const ParamAssignments& params) {
   const ModelInfo* info = find_brdf_model(name);
   if (info == nullptr) {

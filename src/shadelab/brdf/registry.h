@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -15,17 +16,32 @@
 
 namespace shadelab {
 
+// How a model with a split-sum specular ambient (Brdf::split_sum_inputs) is swept by the split sum's error map
+// (render/ibl_error.h): the parameter each row sets (its perceptual roughness), and the one assignment that
+// leaves its specular lobe alone (no diffuse lobe beside it).
+struct SplitSumSweep {
+  std::string roughness_param;
+  std::string specular_only_param;
+  std::string specular_only_value;
+};
+
 struct ModelInfo {
   std::string name;
   std::string summary;  // one line: the formula
   std::string source;   // where the formula comes from
   std::vector<ParamSpec> params;
   std::function<Result<BrdfPtr>(const ParamValues&)> create;
+  std::optional<SplitSumSweep> split_sum_sweep;  // set by the models whose BRDFs answer split_sum_inputs()
+  // The parameter a scene's specular (ks) texture drives for these parameter values; unset: "ks".
+  std::function<std::string(const ParamValues&)> ks_texture_param;
 };
 
 // All models, in a fixed order.
 std::span<const ModelInfo> brdf_models();
 const ModelInfo* find_brdf_model(std::string_view name);
+// The names of the models with a split_sum_sweep, comma-separated in registry order ("ggx, filament"): for
+// messages that list them.
+std::string split_sum_model_names();
 
 using ParamAssignments = std::vector<std::pair<std::string, std::string>>;
 // Looks the model up, validates the parameters and builds it. Errors name the model and parameter.

@@ -16,7 +16,9 @@
 // pdf = p_H / (4 V.H).
 #pragma once
 
+#include "shadelab/brdf/gloss.h"
 #include "shadelab/brdf/layered.h"
+#include "shadelab/brdf/microfacet.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
@@ -26,6 +28,10 @@ class Ward final : public LayeredBrdf {
   Ward(const Rgb& kd, const Rgb& ks, double alpha_x, double alpha_y);
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::ward_eval(m_k, wi, wo); }
   std::optional<KernelBinding> kernel_binding() const override;
+  // Ward's alpha as a Beckmann m (the mean of alpha_x and alpha_y), n = 2/m^2 - 2, as a Phong lobe of n/4.
+  double game_phong_exponent() const override {
+    return phong_exponent_from_blinn_phong(exponent_from_beckmann_m(0.5 * (m_ax + m_ay)));
+  }
 
   // The exponent's argument tan^2(theta_h)(cos^2/ax^2 + sin^2/ay^2) for a unit half vector h.
   double slope_term(const Vec3& h) const;

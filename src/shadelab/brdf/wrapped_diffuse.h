@@ -27,6 +27,7 @@ class WrappedDiffuse final : public Brdf {
   Rgb diffuse_albedo() const override { return m_kd; }  // the wrap itself is applied by SH band factors
   double wrap() const { return m_w; }
   std::optional<KernelBinding> kernel_binding() const override;
+  double game_wrap() const override { return m_w; }
 
  protected:
   std::size_t eval_pairs(const Vec3* wi, const Vec3* wo, Rgb* out, std::size_t n, bool check_unit) const override {

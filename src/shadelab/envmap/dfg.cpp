@@ -14,6 +14,7 @@
 #include "shadelab/core/constants.h"
 #include "shadelab/kernels/kernels.h"
 #include "shadelab/numeric/quadrature.h"
+#include "shadelab/sampling/sobol.h"
 
 namespace shadelab {
 namespace {
@@ -50,7 +51,7 @@ struct Integrand {
     b = 0.0;
     if (l.z <= 0.0 || vh <= 0.0) return;
     const double g = kernel::G2_ggx_correlated(v, l, alpha, alpha) * vh / (mu * h.z);
-    const double fc = std::pow(1.0 - vh, 5.0);  // Schlick 1994: F = F0 + (1 - F0) (1 - V.H)^5
+    const double fc = kernel::F_schlick(vh, 0.0);  // Schlick 1994: F = F0 + (1 - F0) (1 - V.H)^5 at F0 = 0 (fresnel.sl)
     a = (1.0 - fc) * g;
     b = fc * g;
   }
@@ -62,16 +63,6 @@ Integrand make_integrand(double mu, double alpha) {
   f.alpha = alpha;
   f.v = {std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu};
   return f;
-}
-
-// Van der Corput radical inverse in base 2 (the second Hammersley coordinate).
-double radical_inverse(std::uint32_t i) {
-  i = (i << 16) | (i >> 16);
-  i = ((i & 0x55555555u) << 1) | ((i & 0xAAAAAAAAu) >> 1);
-  i = ((i & 0x33333333u) << 2) | ((i & 0xCCCCCCCCu) >> 2);
-  i = ((i & 0x0F0F0F0Fu) << 4) | ((i & 0xF0F0F0F0u) >> 4);
-  i = ((i & 0x00FF00FFu) << 8) | ((i & 0xFF00FF00u) >> 8);
-  return static_cast<double>(i) * 0x1p-32;
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "shadelab/envmap/lobe_sum.h"
 #include "shadelab/envmap/simd.h"
 #include "shadelab/kernels/kernels.h"
+#include "shadelab/sampling/sobol.h"
 
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -74,7 +75,7 @@ const char* ggx_level_method_name(GgxLevelMethod method) {
 Rgb prefilter_ggx_brute_force(const CubeMap& radiance, const Vec3& r, double roughness) {
   const CubeTexelTable& t = CubeTexelTable::get(radiance.size);
   const auto n2 = static_cast<std::size_t>(radiance.size) * static_cast<std::size_t>(radiance.size);
-  const double alpha = roughness * roughness;
+  const double alpha = kernel::alpha_from_roughness(roughness);
   Rgb sum;
   double weight = 0.0;
   for (std::size_t k = 0; k < t.direction.size(); ++k) {
@@ -130,20 +131,6 @@ Rgb sample_cube_seamless(const CubeMap& cube, const Vec3& dir) {
              ay;
 }
 
-namespace {
-
-// Van der Corput radical inverse in base 2 (the second Hammersley coordinate).
-double radical_inverse(std::uint32_t i) {
-  i = (i << 16) | (i >> 16);
-  i = ((i & 0x55555555u) << 1) | ((i & 0xAAAAAAAAu) >> 1);
-  i = ((i & 0x33333333u) << 2) | ((i & 0xCCCCCCCCu) >> 2);
-  i = ((i & 0x0F0F0F0Fu) << 4) | ((i & 0xF0F0F0F0u) >> 4);
-  i = ((i & 0x00FF00FFu) << 8) | ((i & 0xFF00FF00u) >> 8);
-  return static_cast<double>(i) * 0x1p-32;
-}
-
-}  // namespace
-
 GgxFilter::GgxFilter(const CubeMap& radiance, int samples, double lod_bias)
     : pyramid_{radiance}, samples_(samples), lod_bias_(lod_bias) {
   while (pyramid_.back().size > 1 && pyramid_.back().size % 2 == 0) pyramid_.push_back(downsample_cube(pyramid_.back()));
@@ -152,7 +139,7 @@ GgxFilter::GgxFilter(const CubeMap& radiance, int samples, double lod_bias)
 // The fixed sample set of one roughness: l = reflect(-R, h) for Hammersley h drawn from D(h) (n.h), kept where
 // R.l > 0.
 std::vector<GgxFilter::Sample> GgxFilter::make_samples(double roughness) const {
-  const double alpha = roughness * roughness;
+  const double alpha = kernel::alpha_from_roughness(roughness);
   const int count = samples_;
   const int input_size = pyramid_.front().size;
   const double max_lod = static_cast<double>(pyramid_.size() - 1);
@@ -397,13 +384,13 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
     // The fields' radii (header: Method): at least near_cells mid cells and 2 lobe widths; at least
     // coarse_cells coarse cells, 8 lobe widths and a coarse cell beyond the near field (so that the near
     // cells' coarse cells are refined). The lobe width 2 alpha: the angle from R where D falls to 1/4.
-    const double width = 2.0 * r * r;
+    const double width = 2.0 * kernel::alpha_from_roughness(r);
     const double near_angle = near_far ? std::max(o.near_cells * 2.0 * block / size, 3.0 * width) : 0.0;
     const double mid_angle =
         near_far ? std::max({o.coarse_cells * 2.0 * coarse_block / size, 8.0 * width, near_angle + 2.0 * coarse_block / size}) : 0.0;
     const lobe_sum::LevelJob job = lobe_sum::level_job(input, level, 0.0);
     const lobe_sum::NearFarJob near_far_job{&input, &cells, &coarse, &level, near_angle, mid_angle};
-    const GgxLobe lobe(r * r);
+    const GgxLobe lobe(kernel::alpha_from_roughness(r));
     const int rows = lobe_sum::level_items(n);
     const int chunk = std::max(1, rows / 20);
     for (int start = 0; start < rows; start += chunk) {

@@ -27,14 +27,17 @@
 #include "shadelab/core/vec.h"
 #include "shadelab/envmap/cubemap.h"
 #include "shadelab/image/image.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
-inline constexpr double sh_c0 = 0.28209479177387814;  // 1 / (2 sqrt(pi))
-inline constexpr double sh_c1 = 0.48860251190291992;  // sqrt(3 / (4 pi))
-inline constexpr double sh_c2 = 1.09254843059207907;  // sqrt(15 / (4 pi))
-inline constexpr double sh_c3 = 0.31539156525252001;  // sqrt(5 / (16 pi))
-inline constexpr double sh_c4 = 0.54627421529603953;  // sqrt(15 / (16 pi))
+// The basis constants, written once in kernels/sh9.sl (the shaders read the same text); sh_test.cpp checks them
+// against their closed forms 1/(2 sqrt(pi)), sqrt(3/(4 pi)), sqrt(15/(4 pi)), sqrt(5/(16 pi)), sqrt(15/(16 pi)).
+inline const double sh_c0 = kernel::SH9_C0;
+inline const double sh_c1 = kernel::SH9_C1;
+inline const double sh_c2 = kernel::SH9_C2;
+inline const double sh_c3 = kernel::SH9_C3;
+inline const double sh_c4 = kernel::SH9_C4;
 
 using ShBasis = std::array<double, 9>;
 ShBasis sh9_basis(const Vec3& n);  // n unit

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "shadelab/envmap/dfg.h"
+#include "shadelab/kernels/kernels.h"
 #include "shadelab/numeric/quadrature.h"
 
 namespace shadelab {
@@ -65,7 +66,7 @@ double ggx_chain_alpha_for_spread(double spread) {
 }
 
 SplitSumLobes split_sum_lobes_at(double mu, double roughness) {
-  const double alpha = std::max(roughness * roughness, alpha_min);
+  const double alpha = std::max(kernel::alpha_from_roughness(roughness), alpha_min);
   const DfgLobeMoments m = dfg_lobe_moments(mu, alpha, 1e-5);
   SplitSumLobes out;
   SplitSumLobe* parts[2] = {&out.a, &out.b};

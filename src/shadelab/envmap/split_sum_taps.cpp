@@ -19,7 +19,7 @@ SplitSumTap make_tap(const Vec3& wo, double alpha, int i, int n) {
   SplitSumTap t;
   if (!(wo.z > 0.0)) return t;  // a view below the (shading) horizon: no tap weighs anything
   // Hammersley point i of n: ((i + 1/2)/n, radical inverse of i), the latter Sobol's dimension 0.
-  const Vec2 u{(i + 0.5) / n, sobol_u32(static_cast<std::uint32_t>(i), 0) * 0x1p-32};
+  const Vec2 u{(i + 0.5) / n, radical_inverse(static_cast<std::uint32_t>(i))};
   const Vec3 h = sample_ggx_vndf_bounded(wo, u, alpha, alpha);
   const double vh = dot(wo, h);
   t.l = h * (2.0 * vh) - wo;  // reflect(wo, h)
@@ -47,14 +47,14 @@ void check_count(int n) {
 void split_sum_taps(const Vec3& wo, double roughness, std::span<SplitSumTap> out) {
   const auto n = static_cast<int>(out.size());
   check_count(n);
-  const double alpha = std::max(roughness * roughness, 1e-4);
+  const double alpha = std::max(kernel::alpha_from_roughness(roughness), 1e-4);
   for (int i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = make_tap(wo, alpha, i, n);
 }
 
 SplitSumReads split_sum_filtered_reads(const GgxPrefilteredCube& chain, const Frame& frame, const Vec3& wo,
                                        double roughness, int taps) {
   check_count(taps);
-  const double alpha = std::max(roughness * roughness, 1e-4);
+  const double alpha = std::max(kernel::alpha_from_roughness(roughness), 1e-4);
   Rgb sum_a, sum_b;
   double wa = 0.0, wb = 0.0;
   for (int i = 0; i < taps; ++i) {

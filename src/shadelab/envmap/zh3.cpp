@@ -5,6 +5,7 @@
 
 #include "shadelab/color/rgb.h"
 #include "shadelab/core/constants.h"
+#include "shadelab/envmap/sh.h"
 
 namespace shadelab {
 
@@ -61,7 +62,7 @@ Zh3 zh3_from_sh(const ShBands& sh, Zh3Mode mode) {
 Rgb zh3_evaluate(const Zh3& z, const Vec3& n, double f0, double f1, double f2) {
   const std::vector<double> y = sh_basis(n, 2);
   const double t = dot(z.axis, n);
-  const double y20 = std::sqrt(5.0 / (16.0 * pi)) * (3.0 * t * t - 1.0);  // Y_20(a . n), sh.h's sh_c3
+  const double y20 = sh_c3 * (3.0 * t * t - 1.0);  // Y_20(a . n) = sqrt(5/(16 pi)) (3 t^2 - 1)
   Rgb l1;
   for (std::size_t i = 1; i < 4; ++i) l1 += z.linear[i] * y[i];
   return z.linear[0] * (f0 * y[0]) + l1 * f1 + z.zonal * (f2 * y20);

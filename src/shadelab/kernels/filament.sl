@@ -38,7 +38,7 @@ inline FilamentState filament_prepare(FilamentParams p) {
   FilamentState s;
   s.diffuse_colour = p.base_color * (1.0 - p.metallic);
   s.f0 = rgb(0.16 * p.reflectance * p.reflectance * (1.0 - p.metallic)) + p.base_color * p.metallic;
-  s.alpha = p.perceptual_roughness * p.perceptual_roughness;
+  s.alpha = alpha_from_roughness(p.perceptual_roughness);
   s.diffuse = p.diffuse;
   s.energy_compensation = p.energy_compensation;
   s.e_rows = ggx_energy_rows(GGX_ENERGY_G_CORRELATED, s.alpha);

@@ -59,6 +59,13 @@ inline real D_ggx_aniso(vec3 h, real ax, real ay) {
   return 1.0 / (SL_PI * ax * ay * s * s);
 }
 
+// Perceptual roughness r to the GGX roughness alpha: alpha = r^2 (Burley 2012, "Physically-Based Shading at
+// Disney", section 5.4; Karis 2013). The one conversion: the kernels, the C++ (brdf/microfacet.h) and the
+// shaders all call it.
+inline real alpha_from_roughness(real r) {
+  return r * r;
+}
+
 // GGX, isotropic: alpha^2 / (pi ((alpha^2 - 1) cos^2(theta_h) + 1)^2) (Walter et al. 2007 eq. 33, written
 // as in Filament's documentation, "Specular D": D_GGX).
 inline real D_ggx(real cos_h, real alpha) {

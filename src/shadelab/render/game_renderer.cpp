@@ -28,6 +28,7 @@
 #include "shadelab/envmap/sh.h"
 #include "shadelab/kernels/kernels.h"
 #include "shadelab/brdf/game_lobe.h"
+#include "shadelab/brdf/microfacet.h"
 #include "shadelab/render/accel.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/materials.h"
@@ -38,9 +39,6 @@
 namespace shadelab {
 
 namespace {
-
-// The microfacet-GGX models, whose specular ambient is the split sum (ggx_split_sum_lobe).
-bool uses_split_sum(const std::string& model) { return model == "ggx" || model == "filament"; }
 
 class GameShader {
  public:
@@ -73,10 +71,14 @@ class GameShader {
     }
     // The baked environment: SH9, irradiance cube and prefiltered specular chain.
     // The split sum's GGX chain only for a scene with a ggx or filament material.
-    bool any_split_sum = false;
-    if (m_options.ggx_specular == GameGgxSpecular::split_sum) {
-      for (const Material& m : m_scene.materials) any_split_sum = any_split_sum || uses_split_sum(m.model);
+    // A material takes the split sum when its BRDF answers split_sum_inputs() (brdf.h): the model says so.
+    for (std::size_t i = 0; i < m_scene.materials.size(); ++i) {
+      BrdfPtr holder;
+      const Brdf* f = m_materials.brdf(static_cast<int>(i), {0.5, 0.5}, holder);
+      m_split_sum.push_back(m_options.ggx_specular == GameGgxSpecular::split_sum && f != nullptr &&
+                            f->split_sum_inputs().has_value());
     }
+    const bool any_split_sum = std::find(m_split_sum.begin(), m_split_sum.end(), true) != m_split_sum.end();
     if (m_env.has_light() && m_baked != nullptr) {
       // A bake from the caller (render_game's third overload): it must hold what these options read.
       const GameEnvironment& b = *m_baked;
@@ -113,16 +115,14 @@ class GameShader {
     for (std::size_t i = 0; i < m_scene.materials.size(); ++i) {
       const Material& m = m_scene.materials[i];
       GameLobe info;
-      if (!m.model.empty()) {
+      BrdfPtr holder;
+      if (const Brdf* f = m_materials.brdf(static_cast<int>(i), {0.5, 0.5}, holder)) info = game_lobe(*f);
+      if (!m.model.empty() && m.metallic_roughness_texture >= 0) {
         const ModelInfo* model = find_brdf_model(m.model);
         auto values = parse_params(model->name, model->params, m.params);
         if (!values) return values.error();
-        BrdfPtr holder;
-        const Brdf* f = m_materials.brdf(static_cast<int>(i), {0.5, 0.5}, holder);
-        info = game_lobe(m.model, *values, *f);
-        if (m.metallic_roughness_texture >= 0) info.roughness_factor = values->scalar("perceptual_roughness");
+        info.roughness_factor = values->scalar("perceptual_roughness");
       }
-      m_split_sum.push_back(m_options.ggx_specular == GameGgxSpecular::split_sum && uses_split_sum(m.model));
       m_info.push_back(info);
       m_albedo_tables.push_back(game_specular_albedo_table(info));
     }
@@ -185,10 +185,10 @@ class GameShader {
         l += kernel::game_diffuse_ambient(f->diffuse_albedo(), e_over_pi);
       }
     }
-    std::optional<GgxSplitSumLobe> split;
+    std::optional<SplitSumInputs> split;
     if (m_env.has_light() && m_options.specular_ambient && m_split_sum[static_cast<std::size_t>(hit.material)] &&
         m_baked != nullptr && !m_baked->specular_ggx.levels.empty() && m_dfg != nullptr) {
-      split = ggx_split_sum_lobe(*f);  // the hit's own BRDF: a textured hit's roughness and f0
+      split = f->split_sum_inputs();  // the hit's own BRDF: a textured hit's roughness and f0
     }
     if (split) {
       // The split sum of kernels/game_ambient.sl: prefiltered_ggx(d, r) (f0 A + f90 B), A and B at (N.V, r),
@@ -211,7 +211,7 @@ class GameShader {
                                                          split->f0, split->f90, ab.a, ab.b));
       } else {
         if (m_options.split_sum_direction == GameSplitSumDirection::dominant) {
-          r = kernel::game_split_sum_direction(sf.frame.n, r, split->roughness * split->roughness);
+          r = kernel::game_split_sum_direction(sf.frame.n, r, alpha_from_perceptual_roughness(split->roughness));
         }
         spec = Rgb(kernel::game_split_sum_specular(sample_ggx_chain(m_baked->specular_ggx, r, split->roughness), split->f0,
                                                    split->f90, ab.a, ab.b));
@@ -348,6 +348,37 @@ Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const
     }
   }
   out.radiance = std::move(cube);
+  return out;
+}
+
+const char* game_specular_ambient_name(GameSpecularAmbient a) {
+  switch (a) {
+    case GameSpecularAmbient::split_sum: return "split-sum";
+    case GameSpecularAmbient::phong_chain: return "phong-chain";
+    case GameSpecularAmbient::none: break;
+  }
+  return "none";
+}
+
+Result<std::vector<GameSpecularAmbient>> game_specular_ambients(const Scene& scene, const GameOptions& options) {
+  MaterialSet materials;
+  if (auto ok = materials.prepare(scene); !ok) return ok.error();
+  const bool lit = EnvironmentLight(scene).has_light() && options.specular_ambient;
+  std::vector<GameSpecularAmbient> out;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    BrdfPtr holder;
+    const Brdf* f = materials.brdf(static_cast<int>(i), {0.5, 0.5}, holder);
+    GameSpecularAmbient a = GameSpecularAmbient::none;
+    if (lit && f != nullptr) {
+      // The same choice GameShader::prepare makes (split sum) and shade makes (a Phong exponent above 0).
+      if (options.ggx_specular == GameGgxSpecular::split_sum && f->split_sum_inputs()) {
+        a = GameSpecularAmbient::split_sum;
+      } else if (f->game_phong_exponent() > 0.0) {
+        a = GameSpecularAmbient::phong_chain;
+      }
+    }
+    out.push_back(a);
+  }
   return out;
 }
 

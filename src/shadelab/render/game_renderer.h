@@ -48,10 +48,10 @@ namespace shadelab {
 
 enum class GameAmbient { sh9, irradiance_map, none };
 
-// The specular ambient of the microfacet-GGX models (ggx, filament): the split sum with a GGX-prefiltered
-// chain and a DFG table, or the Phong chain the Phong-family models use (the default for now: the explorer's
-// WebGL sphere, which must match this renderer, still shades GGX on the Phong chain; `render --ggx-specular
-// split-sum` and ibl-error use the split sum; docs/renderer.md).
+// The specular ambient of the microfacet-GGX models (those whose BRDF answers split_sum_inputs(): ggx,
+// filament): the split sum with a GGX-prefiltered chain and a DFG table (the default since 2026-12-07, as
+// engines ship it), or the Phong chain the Phong-family models use (`render --ggx-specular phong`; the
+// browser explorer's WebGL sphere still shades GGX on it: docs/renderer.md).
 enum class GameGgxSpecular { split_sum, phong };
 
 // The direction the split sum reads its GGX chain along: the mirror direction R (Karis 2013 as published), or
@@ -81,7 +81,7 @@ struct GameOptions {
   // luminous flux, 8 x 8 holds 0.993: docs/envmap.md, ibl-error). In [1, 32].
   int environment_supersample = 8;
   int specular_size = 64;     // face size of the prefiltered cube's level 0
-  GameGgxSpecular ggx_specular = GameGgxSpecular::phong;
+  GameGgxSpecular ggx_specular = GameGgxSpecular::split_sum;
   // The GGX chain's method (prefilter_ggx.h): sum (every level of a 64 chain an exact sum) or sampled, with
   // ggx_samples Hammersley half vectors per texel (with 1024 its faces of 16 and below are exact sums).
   GgxFilterMethod ggx_method = GgxFilterMethod::sum;
@@ -120,6 +120,14 @@ Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const
 // environment while the scene has one, the irradiance cube for GameAmbient::irradiance_map, the Phong chain
 // with specular_ambient, the GGX chain for a split-sum material.
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options, const GameEnvironment& baked);
+
+// The specular ambient each of the scene's materials gets under these options, in the scene's material order:
+// split_sum (its BRDF answers split_sum_inputs() and options.ggx_specular is split_sum), phong_chain (a
+// specular lobe, game_phong_exponent() > 0, on the Phong chain), or none (no specular lobe, no environment or
+// hemisphere light to reflect, or options.specular_ambient off). `render --mode game --json` reports it.
+enum class GameSpecularAmbient { split_sum, phong_chain, none };
+const char* game_specular_ambient_name(GameSpecularAmbient a);  // "split-sum", "phong-chain", "none"
+Result<std::vector<GameSpecularAmbient>> game_specular_ambients(const Scene& scene, const GameOptions& options = {});
 
 // The DFG table the split sum reads (height-correlated, single scattering, quadrature), baked on first use
 // for each size and kept for the process (thread-safe). size in [1, 4096].

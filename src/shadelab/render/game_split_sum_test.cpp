@@ -11,11 +11,14 @@
 //   (prefilter_ggx_brute_force, every texel with its solid angle) at a roughness on a level of the chain.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 
+#include "shadelab/brdf/registry.h"
 #include "shadelab/envmap/dfg.h"
 #include "shadelab/envmap/prefilter_ggx.h"
 #include "shadelab/image/image_io.h"
@@ -275,6 +278,51 @@ TEST(GameSplitSum, TheDominantDirectionChangesOnlyWhatDependsOnDirection) {
   const Rgb rim_m = game_radiance(v, {0, 0.95, 4}, {0, 0, -1}, mirror).value();
   const Rgb rim_d = game_radiance(v, {0, 0.95, 4}, {0, 0, -1}, dominant).value();
   EXPECT_GT(std::abs(rim_m.r - rim_d.r), 0.02 * rim_m.r) << rim_m.r << " vs " << rim_d.r;
+}
+
+// A model the renderer has never heard of: a new file's class that answers split_sum_inputs() (here by
+// forwarding everything to a ggx BRDF, so the right image is known) and no registry name. The renderer gives
+// it the split sum, with nothing in render/ naming it: the image is the ggx material's, bit for bit, and
+// differs from the Phong chain's. Without the capability (a class that does not forward split_sum_inputs) the
+// same BRDF falls back to the Phong chain.
+class NewGgxLikeModel final : public Brdf {
+ public:
+  NewGgxLikeModel(BrdfPtr inner, bool answers) : m_inner(std::move(inner)), m_answers(answers) {}
+  Rgb eval(const Vec3& wi, const Vec3& wo) const override { return m_inner->eval(wi, wo); }
+  double pdf(const Vec3& wi, const Vec3& wo) const override { return m_inner->pdf(wi, wo); }
+  BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override { return m_inner->sample(wo, u, u_lobe); }
+  Rgb diffuse_albedo() const override { return m_inner->diffuse_albedo(); }
+  double game_phong_exponent() const override { return m_inner->game_phong_exponent(); }
+  std::optional<SplitSumInputs> split_sum_inputs() const override {
+    return m_answers ? m_inner->split_sum_inputs() : std::nullopt;
+  }
+
+ private:
+  BrdfPtr m_inner;
+  bool m_answers;
+};
+
+TEST(GameSplitSum, ANewModelThatAnswersTheSplitSumGetsItWithNoRendererChange) {
+  GameOptions o = split_sum_options();
+  o.specular_size = o.environment_size = 16;
+  const ParamAssignments p{{"kd", "0"}, {"roughness", "0.6"}};
+  const Scene ggx = varying_sphere(0.6);
+  Scene custom = ggx;
+  Scene fallback = ggx;
+  custom.materials[0].model.clear();
+  custom.materials[0].brdf = std::make_shared<NewGgxLikeModel>(make_brdf("ggx", p).value(), true);
+  fallback.materials[0].model.clear();
+  fallback.materials[0].brdf = std::make_shared<NewGgxLikeModel>(make_brdf("ggx", p).value(), false);
+  const RenderResult want = render_game(ggx, o).value();
+  const RenderResult got = render_game(custom, o).value();
+  const RenderResult phong = render_game(fallback, o).value();
+  double differs = 0.0;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      ASSERT_EQ(want.beauty.at(x, y).g, got.beauty.at(x, y).g) << x << ", " << y;
+      differs = std::max(differs, std::abs(want.beauty.at(x, y).g - phong.beauty.at(x, y).g));
+    }
+  EXPECT_GT(differs, 0.01);  // the Phong chain's image is another image
 }
 
 TEST(GameSplitSum, ThePhongFamilyKeepsThePhongChain) {

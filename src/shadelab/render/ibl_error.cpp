@@ -7,7 +7,9 @@
 #include <cmath>
 #include <string>
 
+#include "shadelab/brdf/registry.h"
 #include "shadelab/color/rgb.h"
+#include "shadelab/core/text.h"
 #include "shadelab/render/camera_model.h"
 #include "shadelab/render/path_tracer.h"
 
@@ -163,17 +165,14 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
                                   const IblErrorOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   // The specular lobe alone (header): the parameter that would add a diffuse lobe is fixed.
-  std::string roughness_param;
-  std::pair<std::string, std::string> fixed;
-  if (model == "ggx") {
-    roughness_param = "roughness";
-    fixed = {"kd", "0"};
-  } else if (model == "filament") {
-    roughness_param = "perceptual_roughness";
-    fixed = {"metallic", "1"};
-  } else {
-    return make_error("ibl-error: model '" + model + "' has no split-sum specular ambient (ggx, filament)");
+  const ModelInfo* info = find_brdf_model(model);
+  if (info == nullptr || !info->split_sum_sweep) {
+    return make_error("ibl-error: model '" + printable(model) + "' has no split-sum specular ambient (" +
+                      split_sum_model_names() + ")");
   }
+  const std::string roughness_param = info->split_sum_sweep->roughness_param;
+  const std::pair<std::string, std::string> fixed{info->split_sum_sweep->specular_only_param,
+                                                  info->split_sum_sweep->specular_only_value};
   if (o.roughness.empty()) return make_error("ibl-error: roughness: the list is empty");
   for (const double r : o.roughness) {
     if (!(r > 0.0 && r <= 1.0)) return make_error("ibl-error: roughness: " + std::to_string(r) + " is not in (0, 1]");

@@ -31,8 +31,8 @@ Result<bool> MaterialSet::prepare(const Scene& scene) {
       };
       if (m.kd_texture >= 0 && !has("kd")) return make_error(where + ": model '" + m.model + "' has no parameter kd for its kd texture");
       if (m.gloss_texture >= 0 && !has("n")) return make_error(where + ": model '" + m.model + "' has no exponent n for its gloss texture");
-      rt.ks_is_f0 = m.model == "cook-torrance" && rt.base->choice("f") == "schlick";
-      if (m.ks_texture >= 0 && !rt.ks_is_f0 && !has("ks")) return make_error(where + ": model '" + m.model + "' has no parameter ks for its ks texture");
+      if (rt.info->ks_texture_param) rt.ks_param = rt.info->ks_texture_param(*rt.base);
+      if (m.ks_texture >= 0 && !has(rt.ks_param.c_str())) return make_error(where + ": model '" + m.model + "' has no parameter " + rt.ks_param + " for its ks texture");
       if (m.base_color_texture >= 0 && !has("base_color")) return make_error(where + ": model '" + m.model + "' has no parameter base_color for its base_color texture");
       if (m.metallic_roughness_texture >= 0 && !(has("metallic") && has("perceptual_roughness"))) return make_error(where + ": model '" + m.model + "' has no parameters metallic and perceptual_roughness for its metallic_roughness texture");
     } else if (m.brdf) {
@@ -67,7 +67,7 @@ const Brdf* MaterialSet::brdf(int material, Vec2 uv, BrdfPtr& holder) const {
   }
   if (m.ks_texture >= 0) {
     const Rgb c = sample_texture(m_scene->textures[static_cast<std::size_t>(m.ks_texture)], uv);
-    v.set_numbers(rt.ks_is_f0 ? "f0" : "ks", {c.r, c.g, c.b});
+    v.set_numbers(rt.ks_param, {c.r, c.g, c.b});
   }
   if (m.gloss_texture >= 0) {
     const double g = sample_texture(m_scene->textures[static_cast<std::size_t>(m.gloss_texture)], uv).r;

@@ -29,7 +29,7 @@ class MaterialSet {
     std::optional<ParamValues> base;
     std::shared_ptr<const Brdf> brdf;
     bool textured = false;
-    bool ks_is_f0 = false;  // cook-torrance with Schlick: the specular texture drives f0
+    std::string ks_param = "ks";  // the parameter the specular texture drives (ModelInfo::ks_texture_param)
   };
   const Scene* m_scene = nullptr;
   std::vector<Runtime> m_runtime;

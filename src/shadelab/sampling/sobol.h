@@ -68,4 +68,9 @@ constexpr std::uint32_t sobol_u32(std::uint32_t index, int dimension) {
   return x;
 }
 
+// The van der Corput radical inverse in base 2, phi(i) = sum_k b_k 2^-(k+1) for i = sum_k b_k 2^k: the second
+// coordinate of the Hammersley points ((i + 1/2)/N, phi(i)) (Hammersley & Handscomb 1964; Karis 2013), and
+// Sobol's dimension 0, whose generator matrix is the identity. The library's one radical inverse.
+constexpr double radical_inverse(std::uint32_t i) { return static_cast<double>(sobol_u32(i, 0)) * 0x1p-32; }
+
 }  // namespace shadelab

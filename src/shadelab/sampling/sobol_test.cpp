@@ -39,7 +39,9 @@ TEST(Sobol, FirstDimensionIsVanDerCorput) {
     double expected = 0.0, scale = 0.5;
     for (std::uint32_t n = i; n != 0; n >>= 1u, scale *= 0.5) expected += (n & 1u) * scale;
     EXPECT_EQ(sobol_u32(i, 0) * 0x1.0p-32, expected) << i;
+    EXPECT_EQ(radical_inverse(i), expected) << i;  // the library's one radical inverse
   }
+  EXPECT_EQ(radical_inverse(0xffffffffu), 1.0 - 0x1p-32);  // all 32 digits
 }
 
 TEST(Sobol, SecondDimensionIsPascalsTriangleModTwo) {

@@ -222,7 +222,7 @@ json game_lobe_json(const json& req) {
   if (!values) throw BadRequest{values.error().message};
   auto f = m.create(*values);
   if (!f) throw BadRequest{f.error().message};
-  const GameLobe g = game_lobe(m.name, *values, **f);
+  const GameLobe g = game_lobe(**f);
   json table = json::array();
   for (const auto& v : g.specular_albedo) table.push_back(rgb_json(v));
   return {{"exponent", g.exponent}, {"blinn_like", g.blinn_like}, {"wrap", g.wrap}, {"specular_albedo", table},
