@@ -8,19 +8,11 @@
 
 namespace shadelab {
 
-Vec3 cube_direction(int face, double s, double t) {
-  const double sc = 2.0 * s - 1.0;
-  const double tc = 2.0 * t - 1.0;
-  Vec3 r;
-  switch (face) {  // the inverse of table 8.19
-    case 0: r = {1.0, -tc, -sc}; break;
-    case 1: r = {-1.0, -tc, sc}; break;
-    case 2: r = {sc, 1.0, tc}; break;
-    case 3: r = {sc, -1.0, -tc}; break;
-    case 4: r = {sc, -tc, 1.0}; break;
-    default: r = {-sc, -tc, -1.0}; break;
-  }
-  return normalize(r);
+kernel::CubeTexels cube_texels(const CubeMap& cube) {
+  kernel::CubeTexels t;
+  for (std::size_t f = 0; f < 6; ++f) t.faces[f] = cube.faces[f].data.data();
+  t.size = cube.size;
+  return t;
 }
 
 namespace {

@@ -21,6 +21,7 @@
 
 #include "shadelab/core/vec.h"
 #include "shadelab/image/image.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
@@ -33,34 +34,16 @@ struct CubeCoord {
   double t = 0.0;  // [0, 1] down the face
 };
 
-// Direction (not necessarily unit) -> face and coordinates. Inline: the GGX prefilter calls it for every
-// sample of every texel.
+// Direction (not necessarily unit) -> face and coordinates: OpenGL table 8.19, ties to X, then Y (any choice is
+// consistent on the shared edge), the kernel text kernels/cube.sl cube_face_coord that the shaders and the
+// explorer read too. Inline: the GGX prefilter calls it for every sample of every texel.
 inline CubeCoord cube_coord(const Vec3& r) {
-  const double ax = std::abs(r.x);
-  const double ay = std::abs(r.y);
-  const double az = std::abs(r.z);
-  CubeCoord c;
-  double sc = 0.0;
-  double tc = 0.0;
-  double ma = 0.0;
-  // OpenGL table 8.19; ties go to X, then Y (any choice is consistent on the shared edge).
-  if (ax >= ay && ax >= az) {
-    ma = ax;
-    if (r.x >= 0.0) { c.face = 0; sc = -r.z; tc = -r.y; } else { c.face = 1; sc = r.z; tc = -r.y; }
-  } else if (ay >= az) {
-    ma = ay;
-    if (r.y >= 0.0) { c.face = 2; sc = r.x; tc = r.z; } else { c.face = 3; sc = r.x; tc = -r.z; }
-  } else {
-    ma = az;
-    if (r.z >= 0.0) { c.face = 4; sc = r.x; tc = -r.y; } else { c.face = 5; sc = -r.x; tc = -r.y; }
-  }
-  c.s = 0.5 * (sc / ma + 1.0);
-  c.t = 0.5 * (tc / ma + 1.0);
-  return c;
+  const kernel::CubeFaceCoord c = kernel::cube_face_coord(r);
+  return {c.face, c.s, c.t};
 }
 
-// Face and coordinates -> unit direction.
-Vec3 cube_direction(int face, double s, double t);
+// Face and coordinates -> unit direction (kernels/cube.sl cube_face_direction, the inverse of table 8.19).
+inline Vec3 cube_direction(int face, double s, double t) { return kernel::cube_face_direction(face, s, t); }
 inline Vec3 texel_direction(int face, int x, int y, int size) {
   return cube_direction(face, (x + 0.5) / size, (y + 0.5) / size);
 }
@@ -79,6 +62,11 @@ struct CubeMap {
   // Bilinear lookup inside the face that contains dir (texel centres; clamped at face edges).
   Rgb sample(const Vec3& dir) const;
 };
+
+// The cube's texels as the kernels' fetches read them (kernels.h CubeTexels): pointers into its face images,
+// valid while the cube lives unchanged. Bind them (kernel::IblTexels, kernel::IblBinding) around the call of a
+// kernel that reads cubes (kernels/cube.sl, game_ibl.sl).
+kernel::CubeTexels cube_texels(const CubeMap& cube);
 
 // Per-texel data of an N x N cube map precomputed once per resolution: unit directions and exact solid
 // angles, face-major then row-major, the layout of the face images. Shared by the SH projection and the

@@ -234,18 +234,11 @@ TexelLerp texel_lerp(double x, int n) {
 }
 
 DfgAb dfg_lookup(const DfgTable& table, double mu, double roughness) {
-  const int n = table.size;
-  if (n < 1) return {};
-  const TexelLerp x = texel_lerp(mu, n), y = texel_lerp(roughness, n);
-  DfgAb out;
-  const auto lerp2 = [&](int c) {
-    const double lo = table.at(x.i0, y.i0, c) * (1.0 - x.t) + table.at(x.i1, y.i0, c) * x.t;
-    const double hi = table.at(x.i0, y.i1, c) * (1.0 - x.t) + table.at(x.i1, y.i1, c) * x.t;
-    return lo * (1.0 - y.t) + hi * y.t;
-  };
-  out.a = lerp2(0);
-  out.b = lerp2(1);
-  return out;
+  if (table.size < 1) return {};
+  const kernel::IblTexels texels{nullptr, 0, table.texels.data(), table.size};
+  const kernel::IblBinding bind(texels);
+  const kernel::DfgScaleBias ab = kernel::dfg_read(std::isfinite(mu) ? mu : 0.0, std::isfinite(roughness) ? roughness : 0.0, table.size);
+  return {ab.a, ab.b};
 }
 
 }  // namespace shadelab

@@ -91,7 +91,7 @@ TexelLerp texel_lerp(double x, int n);
 
 // A and B at (N.V = mu, perceptual roughness r) read from the table as a GPU's bilinear sampler reads the
 // texture at coordinates (mu, r): between the four nearest texel centres, clamped to the edge texels (so mu
-// and r below half a texel read the first column / row). What the game renderer's split-sum uses.
+// and r below half a texel read the first column / row). What the game renderer's split-sum uses: the kernel text kernels/game_ibl.sl dfg_read (mu or r not finite reads as 0).
 struct DfgAb {
   double a = 0.0;
   double b = 0.0;

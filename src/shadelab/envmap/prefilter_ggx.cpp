@@ -94,42 +94,42 @@ Rgb prefilter_ggx_brute_force(const CubeMap& radiance, const Vec3& r, double rou
 
 namespace {
 
-// Texel (x, y) of a face, where x or y may be one texel outside [0, N): such a tap reads the texel of the
-// neighbouring face that the direction of its (extended-plane) centre falls in; past a corner, the mean of
-// the three texels that meet there.
+// Texel (x, y) of a face, where x or y may be one texel outside [0, N): the kernel text's
+// cube_texel_across_edges (kernels/cube.sl) on this cube.
 Rgb texel_across_edges(const CubeMap& c, int face, int x, int y) {
-  const int n = c.size;
-  const bool x_in = x >= 0 && x < n;
-  const bool y_in = y >= 0 && y < n;
-  if (x_in && y_in) return c.texel(face, x, y);
-  const auto neighbour = [&](int xx, int yy) {
-    const CubeCoord q = cube_coord(cube_direction(face, (xx + 0.5) / n, (yy + 0.5) / n));
-    const int qx = std::clamp(static_cast<int>(q.s * n), 0, n - 1);
-    const int qy = std::clamp(static_cast<int>(q.t * n), 0, n - 1);
-    return c.texel(q.face, qx, qy);
-  };
-  if (x_in || y_in) return neighbour(x, y);
-  const int cx = std::clamp(x, 0, n - 1);
-  const int cy = std::clamp(y, 0, n - 1);
-  return (c.texel(face, cx, cy) + neighbour(x, cy) + neighbour(cx, y)) / 3.0;
+  const kernel::CubeTexels cube = cube_texels(c);
+  const kernel::IblTexels texels{&cube, 1, nullptr, 0};
+  const kernel::IblBinding bind(texels);
+  return kernel::cube_texel_across_edges(0, c.size, face, x, y);
 }
 
 }  // namespace
 
 Rgb sample_cube_seamless(const CubeMap& cube, const Vec3& dir) {
-  const CubeCoord c = cube_coord(dir);
-  const int n = cube.size;
-  const double fx = c.s * n - 0.5;  // texel centres at integer fx
-  const double fy = c.t * n - 0.5;
-  const int x0 = std::clamp(static_cast<int>(std::floor(fx)), -1, n - 1);
-  const int y0 = std::clamp(static_cast<int>(std::floor(fy)), -1, n - 1);
-  const double ax = std::clamp(fx - x0, 0.0, 1.0);
-  const double ay = std::clamp(fy - y0, 0.0, 1.0);
-  return (texel_across_edges(cube, c.face, x0, y0) * (1 - ax) + texel_across_edges(cube, c.face, x0 + 1, y0) * ax) *
-             (1 - ay) +
-         (texel_across_edges(cube, c.face, x0, y0 + 1) * (1 - ax) + texel_across_edges(cube, c.face, x0 + 1, y0 + 1) * ax) *
-             ay;
+  if (cube.size < 1) return {};
+  const kernel::CubeTexels c = cube_texels(cube);
+  const kernel::IblTexels texels{&c, 1, nullptr, 0};
+  const kernel::IblBinding bind(texels);
+  return kernel::cube_sample_seamless(0, dir);
 }
+
+GgxChainTexels::GgxChainTexels(const GgxPrefilteredCube& chain) {
+  cubes.reserve(chain.levels.size());
+  for (const CubeMap& level : chain.levels) cubes.push_back(cube_texels(level));
+  mapping = chain.mapping.kind == GgxRoughnessMapping::filament ? kernel::GGX_MIP_MAPPING_FILAMENT
+                                                                 : kernel::GGX_MIP_MAPPING_LINEAR;
+}
+
+kernel::IblTexels GgxChainTexels::texels(const DfgTable* dfg) const {
+  kernel::IblTexels t{cubes.data(), static_cast<int>(cubes.size()), nullptr, 0};
+  if (dfg != nullptr) {
+    t.dfg = dfg->texels.data();
+    t.dfg_size = dfg->size;
+  }
+  return t;
+}
+
+double ggx_chain_roughness(double roughness) { return std::clamp(std::isfinite(roughness) ? roughness : 0.0, 0.0, 1.0); }
 
 GgxFilter::GgxFilter(const CubeMap& radiance, int samples, double lod_bias)
     : pyramid_{radiance}, samples_(samples), lod_bias_(lod_bias) {
@@ -447,15 +447,11 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
 }
 
 Rgb sample_ggx_chain(const GgxPrefilteredCube& chain, const Vec3& dir, double roughness) {
-  const auto levels = static_cast<int>(chain.levels.size());
-  if (levels == 0) return {};
-  const double lod = std::clamp(chain.mapping.lod(std::clamp(std::isfinite(roughness) ? roughness : 0.0, 0.0, 1.0)), 0.0, levels - 1.0);
-  const int l0 = std::min(static_cast<int>(lod), levels - 1);
-  const int l1 = std::min(l0 + 1, levels - 1);
-  const double t = lod - l0;
-  const Rgb v0 = sample_cube_seamless(chain.levels[static_cast<std::size_t>(l0)], dir);
-  if (t <= 0.0 || l1 == l0) return v0;
-  return v0 * (1.0 - t) + sample_cube_seamless(chain.levels[static_cast<std::size_t>(l1)], dir) * t;
+  if (chain.levels.empty()) return {};
+  const GgxChainTexels c(chain);
+  const kernel::IblTexels texels = c.texels();
+  const kernel::IblBinding bind(texels);
+  return kernel::ggx_chain_read(dir, ggx_chain_roughness(roughness), texels.cube_count, c.mapping);
 }
 
 }  // namespace shadelab

@@ -47,6 +47,7 @@
 #include <vector>
 
 #include "shadelab/envmap/cubemap.h"
+#include "shadelab/envmap/dfg.h"
 #include "shadelab/envmap/irradiance.h"
 
 namespace shadelab {
@@ -116,12 +117,25 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
 // (no sampling, no pyramid), at perceptual roughness r > 0. O(6 N^2) per direction.
 Rgb prefilter_ggx_brute_force(const CubeMap& radiance, const Vec3& r, double roughness);
 
-// A bilinear lookup at direction dir that crosses face edges (the reads of prefilter_ggx).
+// A bilinear lookup at direction dir that crosses face edges (the reads of prefilter_ggx): the kernel text
+// kernels/cube.sl cube_sample_seamless on this cube. Black for an empty cube.
 Rgb sample_cube_seamless(const CubeMap& cube, const Vec3& dir);
 
-// The chain read as a shader reads it for perceptual roughness r (textureLod at the mapping's lod(r)):
-// sample_cube_seamless in the two levels around the lod, linear between them, clamped to the chain.
+// The chain read as a shader reads it for perceptual roughness r (the mapping's lod(r)): the kernel text
+// kernels/game_ibl.sl ggx_chain_read, sample_cube_seamless in the two levels around the lod, linear between
+// them, clamped to the chain; r not finite reads as 0 and is clamped to [0, 1] (ggx_chain_roughness).
 Rgb sample_ggx_chain(const GgxPrefilteredCube& chain, const Vec3& dir, double roughness);
+double ggx_chain_roughness(double roughness);
+
+// A chain's levels (and optionally a DFG table) as the kernels' fetches read them, built once for many reads
+// (the game renderer per render, split_sum_filtered_reads per pixel): cube i is level i. Valid while the
+// chain (and table) live unchanged. Bind texels() with kernel::IblBinding around the kernel calls.
+struct GgxChainTexels {
+  explicit GgxChainTexels(const GgxPrefilteredCube& chain);
+  kernel::IblTexels texels(const DfgTable* dfg = nullptr) const;
+  std::vector<kernel::CubeTexels> cubes;
+  int mapping = kernel::GGX_MIP_MAPPING_LINEAR;  // kernels/game_ibl.sl GGX_MIP_MAPPING_*
+};
 
 // The filter of prefilter_ggx at any direction: the input pyramid built once, then out(R) at perceptual
 // roughness r > 0 from a sample set (make_samples), exactly as prefilter_ggx computes a texel of R's level.

@@ -55,19 +55,27 @@ SplitSumReads split_sum_filtered_reads(const GgxPrefilteredCube& chain, const Fr
                                        double roughness, int taps) {
   check_count(taps);
   const double alpha = std::max(kernel::alpha_from_roughness(roughness), 1e-4);
+  if (chain.levels.empty()) return {};
+  // The chain bound once for all the taps; each tap is the kernel's chain read (kernels/game_ibl.sl).
+  const GgxChainTexels c_texels(chain);
+  const kernel::IblTexels texels = c_texels.texels();
+  const kernel::IblBinding bind(texels);
+  const auto read = [&](const Vec3& dir, double r) -> Rgb {
+    return kernel::ggx_chain_read(dir, ggx_chain_roughness(r), texels.cube_count, c_texels.mapping);
+  };
   Rgb sum_a, sum_b;
   double wa = 0.0, wb = 0.0;
   for (int i = 0; i < taps; ++i) {
     const SplitSumTap tap = make_tap(wo, alpha, i, taps);
     if (tap.weight_a <= 0.0 && tap.weight_b <= 0.0) continue;
-    const Rgb c = sample_ggx_chain(chain, frame.to_world(tap.l), tap.roughness);
+    const Rgb c = read(frame.to_world(tap.l), tap.roughness);
     sum_a += c * tap.weight_a;
     sum_b += c * tap.weight_b;
     wa += tap.weight_a;
     wb += tap.weight_b;
   }
   Rgb along_r;  // a part with no weight reads the chain along R (the mirror direction, local (-x, -y, z))
-  if (!(wa > 0.0) || !(wb > 0.0)) along_r = sample_ggx_chain(chain, frame.to_world(Vec3{-wo.x, -wo.y, wo.z}), roughness);
+  if (!(wa > 0.0) || !(wb > 0.0)) along_r = read(frame.to_world(Vec3{-wo.x, -wo.y, wo.z}), roughness);
   return {wa > 0.0 ? sum_a * (1.0 / wa) : along_r, wb > 0.0 ? sum_b * (1.0 / wb) : along_r};
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstddef>
 
 #include "shadelab/kernels/sl.h"
 
@@ -33,6 +34,45 @@ inline real ggx_energy_average_texel(int g, int row) {
   return ggx_energy_cached(cache, ggx_energy_average_texels)[g * 32 + row];
 }
 
+// Texel fetches of the baked environment the split sum reads (cube.sl, game_ibl.sl): cube maps addressed by an
+// index (a GGX chain's level i is cube i) and the DFG table. In C++ they read the IblTexels bound to the calling
+// thread by an IblBinding (envmap/ binds its cubes and tables around each call into those kernels, the game
+// renderer once per pixel); a shader defines them over its textures (tools/shaders/: texelFetch on a 2D array
+// texture, one layer a face, one mip level a cube, and on the DFG texture).
+struct CubeTexels {
+  const float* faces[6] = {};  // RGB floats per texel, row-major, row 0 at t = 0 (envmap/cubemap.h's images)
+  int size = 0;
+};
+struct IblTexels {
+  const CubeTexels* cubes = nullptr;  // cube i of cube_texel(i, ...)
+  int cube_count = 0;
+  const double* dfg = nullptr;  // dfg_size^2 texels of 3 channels (A, B, A + B), row-major, row = roughness
+  int dfg_size = 0;
+};
+inline constinit thread_local const IblTexels* ibl_bound_texels = nullptr;
+// Binds `texels` to the calling thread for the binding's lifetime, restoring the previous binding after.
+class IblBinding {
+ public:
+  explicit IblBinding(const IblTexels& texels) : m_previous(ibl_bound_texels) { ibl_bound_texels = &texels; }
+  ~IblBinding() { ibl_bound_texels = m_previous; }
+  IblBinding(const IblBinding&) = delete;
+  IblBinding& operator=(const IblBinding&) = delete;
+
+ private:
+  const IblTexels* m_previous;
+};
+inline int cube_size(int cube) { return ibl_bound_texels->cubes[cube].size; }
+inline rgb cube_texel(int cube, int face, int x, int y) {
+  const CubeTexels& c = ibl_bound_texels->cubes[cube];
+  const float* p = c.faces[face] + 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(c.size) + static_cast<std::size_t>(x));
+  return {static_cast<real>(p[0]), static_cast<real>(p[1]), static_cast<real>(p[2])};
+}
+inline real dfg_texel(int x, int y, int channel) {
+  const IblTexels& t = *ibl_bound_texels;
+  return t.dfg[(static_cast<std::size_t>(y) * static_cast<std::size_t>(t.dfg_size) + static_cast<std::size_t>(x)) * 3 +
+               static_cast<std::size_t>(channel)];
+}
+
 // clang-format off
 #include "shadelab/kernels/common.sl"
 #include "shadelab/kernels/fresnel.sl"
@@ -52,6 +92,8 @@ inline real ggx_energy_average_texel(int g, int row) {
 #include "shadelab/kernels/game_shading.sl"
 #include "shadelab/kernels/sh9.sl"
 #include "shadelab/kernels/game_ambient.sl"
+#include "shadelab/kernels/cube.sl"
+#include "shadelab/kernels/game_ibl.sl"
 #include "shadelab/kernels/display.sl"
 // clang-format on
 }  // namespace shadelab::kernel

@@ -99,6 +99,11 @@ using std::sqrt;
 constexpr real max(real a, real b) { return a < b ? b : a; }
 constexpr real min(real a, real b) { return b < a ? b : a; }
 constexpr real clamp(real x, real lo, real hi) { return min(max(x, lo), hi); }
+// The integer forms (GLSL's genIType; HLSL's int overloads): a call that mixes int and real does not compile,
+// as GLSL ES requires.
+constexpr int max(int a, int b) { return a < b ? b : a; }
+constexpr int min(int a, int b) { return b < a ? b : a; }
+constexpr int clamp(int x, int lo, int hi) { return min(max(x, lo), hi); }
 constexpr real mix(real x, real y, real a) { return x * (1.0 - a) + y * a; }
 constexpr rgb mix(const rgb& x, const rgb& y, real a) { return x * (1.0 - a) + y * a; }
 inline real atan2(real y, real x) { return std::atan2(y, x); }  // GLSL atan(y, x)

@@ -107,6 +107,11 @@ class GameShader {
         return make_error("split_sum_taps must be in [1, 1024]");
       }
       m_dfg = &game_dfg_table(m_options.dfg_size);
+      // The chain and the DFG table as the kernels' fetches read them (kernels/game_ibl.sl), bound per pixel.
+      if (m_baked != nullptr && !m_baked->specular_ggx.levels.empty()) {
+        m_chain_texels.emplace(m_baked->specular_ggx);
+        m_ibl_texels = m_chain_texels->texels(m_dfg);
+      }
       // Its rows are computed as the pixels first read them (split_sum_lobes.h).
       if (m_options.split_sum_direction == GameSplitSumDirection::lobes) m_lobes = &split_sum_lobe_table();
     }
@@ -190,11 +195,16 @@ class GameShader {
         m_baked != nullptr && !m_baked->specular_ggx.levels.empty() && m_dfg != nullptr) {
       split = f->split_sum_inputs();  // the hit's own BRDF: a textured hit's roughness and f0
     }
-    if (split) {
+    if (split && m_chain_texels) {
       // The split sum of kernels/game_ambient.sl: prefiltered_ggx(d, r) (f0 A + f90 B), A and B at (N.V, r),
-      // d the mirror direction R or the dominant direction (options.split_sum_direction).
+      // d the mirror direction R or the dominant direction (options.split_sum_direction); the chain and the DFG
+      // table read by the kernels of game_ibl.sl (the text the exported shaders run).
+      const kernel::IblBinding bind(m_ibl_texels);
+      const auto chain = [&](const Vec3& d, double roughness) -> Rgb {
+        return kernel::ggx_chain_read(d, ggx_chain_roughness(roughness), m_ibl_texels.cube_count, m_chain_texels->mapping);
+      };
       Vec3 r = kernel::game_reflect(wo_world, sf.frame.n);
-      const DfgAb ab = dfg_lookup(*m_dfg, wo.z, split->roughness);
+      const kernel::DfgScaleBias ab = kernel::dfg_read(std::isfinite(wo.z) ? wo.z : 0.0, split->roughness, m_dfg->size);
       Rgb spec;
       if (m_options.split_sum_direction == GameSplitSumDirection::filtered) {
         // Each part averaged over its own lobe by taps of the same chain (envmap/split_sum_taps.h).
@@ -206,15 +216,13 @@ class GameShader {
         const SplitSumLobes lobes = split_sum_lobes(*m_lobes, wo.z, split->roughness);
         const Vec3 da = kernel::game_split_sum_lobe_direction(sf.frame.n, r, lobes.a.angle);
         const Vec3 db = kernel::game_split_sum_lobe_direction(sf.frame.n, r, lobes.b.angle);
-        spec = Rgb(kernel::game_split_sum_specular_lobes(sample_ggx_chain(m_baked->specular_ggx, da, lobes.a.roughness),
-                                                         sample_ggx_chain(m_baked->specular_ggx, db, lobes.b.roughness),
+        spec = Rgb(kernel::game_split_sum_specular_lobes(chain(da, lobes.a.roughness), chain(db, lobes.b.roughness),
                                                          split->f0, split->f90, ab.a, ab.b));
       } else {
         if (m_options.split_sum_direction == GameSplitSumDirection::dominant) {
           r = kernel::game_split_sum_direction(sf.frame.n, r, alpha_from_perceptual_roughness(split->roughness));
         }
-        spec = Rgb(kernel::game_split_sum_specular(sample_ggx_chain(m_baked->specular_ggx, r, split->roughness), split->f0,
-                                                   split->f90, ab.a, ab.b));
+        spec = Rgb(kernel::game_split_sum_specular(chain(r, split->roughness), split->f0, split->f90, ab.a, ab.b));
       }
       const double e = ab.a + ab.b;  // E(N.V) with F = 1, of the same table
       if (split->filament != nullptr && e > 0.0) spec = spec * Rgb(kernel::filament_energy_compensation(split->f0, e));
@@ -272,6 +280,8 @@ class GameShader {
   GameEnvironment m_owned;
   const DfgTable* m_dfg = nullptr;
   const SplitSumLobeTable* m_lobes = nullptr;  // the lobe-matched lookup's table (split_sum_direction lobes)
+  std::optional<GgxChainTexels> m_chain_texels;  // the GGX chain's levels for the kernels' fetches
+  kernel::IblTexels m_ibl_texels;                // those and the DFG table, bound per pixel
   std::vector<bool> m_split_sum;  // per material: the split-sum specular ambient
   std::vector<GameLobe> m_info;
   std::vector<kernel::GameSpecularAlbedo> m_albedo_tables;
