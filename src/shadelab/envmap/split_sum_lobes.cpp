@@ -112,37 +112,33 @@ const SplitSumLobeTable& split_sum_lobe_table() {
   return table;
 }
 
-SplitSumLobes split_sum_lobes(const SplitSumLobeTable& table, double mu, double roughness) {
-  const int n = table.size();
-  if (n < 1) return {};
-  const TexelLerp x = texel_lerp(mu, n), y = texel_lerp(roughness, n);
-  // The four texels once (each read checks that its row is there), then the four channels between them.
-  const SplitSumLobes& t00 = table.at(x.i0, y.i0);
-  const SplitSumLobes& t10 = table.at(x.i1, y.i0);
-  const SplitSumLobes& t01 = table.at(x.i0, y.i1);
-  const SplitSumLobes& t11 = table.at(x.i1, y.i1);
-  const auto lerp2 = [&](auto get) {
-    const double lo = get(t00) * (1.0 - x.t) + get(t10) * x.t;
-    const double hi = get(t01) * (1.0 - x.t) + get(t11) * x.t;
-    return lo * (1.0 - y.t) + hi * y.t;
-  };
-  SplitSumLobes out;
-  out.a.angle = lerp2([](const SplitSumLobes& s) { return s.a.angle; });
-  out.a.roughness = lerp2([](const SplitSumLobes& s) { return s.a.roughness; });
-  out.b.angle = lerp2([](const SplitSumLobes& s) { return s.b.angle; });
-  out.b.roughness = lerp2([](const SplitSumLobes& s) { return s.b.roughness; });
-  // Below the first row's centre, linear toward the mirror (r = 0: both lobes the delta at R, at the angle
-  // acos(N.V) from n, roughness 0) instead of clamping to the first row. NaN reads as texel_lerp reads it: 0.
-  const double r0 = 0.5 / n;
-  const double r = std::isfinite(roughness) ? roughness : 0.0;
-  if (r < r0) {
-    const double w = std::max(r, 0.0) / r0;
-    const double mirror_angle = std::acos(std::clamp(std::isfinite(mu) ? mu : 0.0, 0.0, 1.0));
-    for (SplitSumLobe* p : {&out.a, &out.b}) {
-      p->angle = mirror_angle + (p->angle - mirror_angle) * w;
-      p->roughness *= w;
-    }
+double split_sum_lobe_texel_of(const void* table, int i, int j, int channel) {
+  const SplitSumLobes& t = static_cast<const SplitSumLobeTable*>(table)->at(i, j);
+  switch (channel) {
+    case 0: return t.a.angle;
+    case 1: return t.a.roughness;
+    case 2: return t.b.angle;
+    default: return t.b.roughness;
   }
+}
+
+void bind_split_sum_lobe_table(kernel::IblTexels& texels, const SplitSumLobeTable& table) {
+  texels.lobe_texel = split_sum_lobe_texel_of;
+  texels.lobe_table = &table;
+  texels.lobe_size = table.size();
+}
+
+SplitSumLobes split_sum_lobes(const SplitSumLobeTable& table, double mu, double roughness) {
+  if (table.size() < 1) return {};
+  // The kernel text's read (kernels/game_ibl.sl split_sum_lobes_read); NaN reads as 0.
+  kernel::IblTexels texels;
+  bind_split_sum_lobe_table(texels, table);
+  const kernel::IblBinding bind(texels);
+  const kernel::SplitSumLobeReads k = kernel::split_sum_lobes_read(std::isfinite(mu) ? mu : 0.0,
+                                                                   std::isfinite(roughness) ? roughness : 0.0, table.size());
+  SplitSumLobes out;
+  out.a = {k.angle_a, k.roughness_a};
+  out.b = {k.angle_b, k.roughness_b};
   return out;
 }
 

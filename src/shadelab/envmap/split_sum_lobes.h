@@ -32,6 +32,8 @@
 #include <mutex>
 #include <vector>
 
+#include "shadelab/kernels/kernels.h"
+
 namespace shadelab {
 
 // The chain lobe's spread 1 - mean(R.l) at GGX alpha in (0, 1], by adaptive quadrature (above).
@@ -74,7 +76,11 @@ class SplitSumLobeTable {
 };
 const SplitSumLobeTable& split_sum_lobe_table();
 
-// The table read bilinearly at (N.V, perceptual roughness), as dfg_lookup reads the DFG table.
+// The table read bilinearly at (N.V, perceptual roughness), as dfg_lookup reads the DFG table: the kernel text
+// kernels/game_ibl.sl split_sum_lobes_read (mu or r not finite reads as 0).
 SplitSumLobes split_sum_lobes(const SplitSumLobeTable& table, double mu, double roughness);
+
+// The table as the kernels' fetch split_sum_lobe_texel reads it (rows computed at their first read).
+void bind_split_sum_lobe_table(kernel::IblTexels& texels, const SplitSumLobeTable& table);
 
 }  // namespace shadelab

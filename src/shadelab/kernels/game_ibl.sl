@@ -6,9 +6,12 @@
 //   levels around lod mixed linearly;
 // - the DFG table (envmap/dfg.h): A (channel 0) and B (channel 1) at (N.V, r), texel (i, j) at
 //   ((i + 1/2)/n, (j + 1/2)/n), bilinear between texel centres and clamped at the edges.
-// The split sum itself (prefiltered (f0 A + f90 B), Karis 2013) and its lookups are game_ambient.sl's. The
-// texels come from the language-specific fetches cube_texel / cube_size (the chain's level i is cube i) and
-// dfg_texel(i, j, channel) (C++: kernels.h; shaders: their textures).
+// - the lobe-matched lookup's table (envmap/split_sum_lobes.h), read as the DFG table but going to the mirror
+//   below its first row;
+// - the split sum at a shading point (game_split_sum_ambient): the lookup (mirror, dominant or lobes), the chain
+//   reads and prefiltered (f0 A + f90 B) of game_ambient.sl (Karis 2013).
+// The texels come from the language-specific fetches cube_texel / cube_size (the chain's level i is cube i),
+// dfg_texel(i, j, channel) and split_sum_lobe_texel(i, j, channel) (C++: kernels.h; shaders: their textures).
 
 const int GGX_MIP_MAPPING_LINEAR = 0;
 const int GGX_MIP_MAPPING_FILAMENT = 1;
@@ -56,4 +59,72 @@ inline DfgScaleBias dfg_read(real mu, real roughness, int n) {
   out.b = (dfg_texel(x0, y0, 1) * (1.0 - tx) + dfg_texel(x1, y0, 1) * tx) * (1.0 - ty) +
           (dfg_texel(x0, y1, 1) * (1.0 - tx) + dfg_texel(x1, y1, 1) * tx) * ty;
   return out;
+}
+
+struct SplitSumLobeReads {
+  real angle_a;      // the f0 A part: radians from n toward R
+  real roughness_a;  // the f0 A part: the perceptual roughness the chain is read at
+  real angle_b;      // the f90 B part
+  real roughness_b;
+};
+
+// One channel of the lobe table between four texels, as dfg_read combines them.
+inline real split_sum_lobe_bilinear(int x0, int x1, int y0, int y1, real tx, real ty, int channel) {
+  return (split_sum_lobe_texel(x0, y0, channel) * (1.0 - tx) + split_sum_lobe_texel(x1, y0, channel) * tx) * (1.0 - ty) +
+         (split_sum_lobe_texel(x0, y1, channel) * (1.0 - tx) + split_sum_lobe_texel(x1, y1, channel) * tx) * ty;
+}
+
+// The lobe-matched lookup's n x n table (envmap/split_sum_lobes.h; `bake ibl`'s split_sum_lobes.json, channels
+// angle_a, roughness_a, angle_b, roughness_b) at (mu, r) = (N.V, perceptual roughness): read as dfg_read reads
+// the DFG table, except below the first row's centre r0 = 1/(2n), where it goes linearly to the mirror (r = 0:
+// both lobes the delta at R, at the angle acos(mu) from n, roughness 0) instead of clamping to the first row.
+inline SplitSumLobeReads split_sum_lobes_read(real mu, real roughness, int n) {
+  real fn = real(n);
+  real px = clamp(mu * fn - 0.5, 0.0, fn - 1.0);
+  real py = clamp(roughness * fn - 0.5, 0.0, fn - 1.0);
+  int x0 = min(int(px), n - 1);
+  int x1 = min(x0 + 1, n - 1);
+  int y0 = min(int(py), n - 1);
+  int y1 = min(y0 + 1, n - 1);
+  real tx = px - real(x0);
+  real ty = py - real(y0);
+  SplitSumLobeReads out;
+  out.angle_a = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 0);
+  out.roughness_a = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 1);
+  out.angle_b = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 2);
+  out.roughness_b = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 3);
+  real r0 = 0.5 / fn;
+  if (roughness < r0) {
+    real w = max(roughness, 0.0) / r0;
+    real mirror_angle = acos(clamp(mu, 0.0, 1.0));
+    out.angle_a = mirror_angle + (out.angle_a - mirror_angle) * w;
+    out.roughness_a = out.roughness_a * w;
+    out.angle_b = mirror_angle + (out.angle_b - mirror_angle) * w;
+    out.roughness_b = out.roughness_b * w;
+  }
+  return out;
+}
+
+// The split sum's lookups (render/game_renderer.h GameSplitSumDirection; `render --split-sum-lookup`).
+const int SPLIT_SUM_LOOKUP_MIRROR = 0;    // the chain read once along R (Karis 2013 as published)
+const int SPLIT_SUM_LOOKUP_DOMINANT = 1;  // once along normalize(mix(R, n, alpha^2)) (game_split_sum_direction)
+const int SPLIT_SUM_LOOKUP_LOBES = 2;     // each part once along and at its lobe's first moments (the default)
+
+// The game shading equation's split-sum specular ambient at a shading point, before a model's energy terms:
+// n the unit normal and wo the unit direction to the viewer (world space), mu = N.V in [0, 1], r the
+// perceptual roughness, f0 and f90 the model's (brdf.h SplitSumInputs), ab the DFG table's A and B at (mu, r)
+// (dfg_read; the caller keeps E = A + B for the energy terms), the chain of `levels` levels and its mip
+// mapping, and for the lobes lookup the lobe table's size.
+inline rgb game_split_sum_ambient(vec3 n, vec3 wo, real mu, real roughness, rgb f0, rgb f90, DfgScaleBias ab, int lookup,
+                                  int levels, int mapping, int lobe_size) {
+  vec3 r = game_reflect(wo, n);
+  if (lookup == SPLIT_SUM_LOOKUP_LOBES) {
+    SplitSumLobeReads lobes = split_sum_lobes_read(mu, roughness, lobe_size);
+    vec3 da = game_split_sum_lobe_direction(n, r, lobes.angle_a);
+    vec3 db = game_split_sum_lobe_direction(n, r, lobes.angle_b);
+    return game_split_sum_specular_lobes(ggx_chain_read(da, lobes.roughness_a, levels, mapping),
+                                         ggx_chain_read(db, lobes.roughness_b, levels, mapping), f0, f90, ab.a, ab.b);
+  }
+  if (lookup == SPLIT_SUM_LOOKUP_DOMINANT) r = game_split_sum_direction(n, r, alpha_from_roughness(roughness));
+  return game_split_sum_specular(ggx_chain_read(r, roughness, levels, mapping), f0, f90, ab.a, ab.b);
 }

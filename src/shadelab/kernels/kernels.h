@@ -48,6 +48,11 @@ struct IblTexels {
   int cube_count = 0;
   const double* dfg = nullptr;  // dfg_size^2 texels of 3 channels (A, B, A + B), row-major, row = roughness
   int dfg_size = 0;
+  // The lobe table's texel (i, j), channel c (angle_a, roughness_a, angle_b, roughness_b): a call, so that the
+  // C++ table can compute a row at its first read (envmap/split_sum_lobes.h).
+  double (*lobe_texel)(const void* table, int i, int j, int channel) = nullptr;
+  const void* lobe_table = nullptr;
+  int lobe_size = 0;
 };
 inline constinit thread_local const IblTexels* ibl_bound_texels = nullptr;
 // Binds `texels` to the calling thread for the binding's lifetime, restoring the previous binding after.
@@ -66,6 +71,10 @@ inline rgb cube_texel(int cube, int face, int x, int y) {
   const CubeTexels& c = ibl_bound_texels->cubes[cube];
   const float* p = c.faces[face] + 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(c.size) + static_cast<std::size_t>(x));
   return {static_cast<real>(p[0]), static_cast<real>(p[1]), static_cast<real>(p[2])};
+}
+inline real split_sum_lobe_texel(int x, int y, int channel) {
+  const IblTexels& t = *ibl_bound_texels;
+  return t.lobe_texel(t.lobe_table, x, y, channel);
 }
 inline real dfg_texel(int x, int y, int channel) {
   const IblTexels& t = *ibl_bound_texels;

@@ -107,13 +107,14 @@ class GameShader {
         return make_error("split_sum_taps must be in [1, 1024]");
       }
       m_dfg = &game_dfg_table(m_options.dfg_size);
+      // The lobe table's rows are computed as the pixels first read them (split_sum_lobes.h).
+      if (m_options.split_sum_direction == GameSplitSumDirection::lobes) m_lobes = &split_sum_lobe_table();
       // The chain and the DFG table as the kernels' fetches read them (kernels/game_ibl.sl), bound per pixel.
       if (m_baked != nullptr && !m_baked->specular_ggx.levels.empty()) {
         m_chain_texels.emplace(m_baked->specular_ggx);
         m_ibl_texels = m_chain_texels->texels(m_dfg);
+        if (m_lobes != nullptr) bind_split_sum_lobe_table(m_ibl_texels, *m_lobes);
       }
-      // Its rows are computed as the pixels first read them (split_sum_lobes.h).
-      if (m_options.split_sum_direction == GameSplitSumDirection::lobes) m_lobes = &split_sum_lobe_table();
     }
     m_sh += m_sh_lights;  // the environment's coefficients (zero without one) and the D3DX-style lights
     // Per material: Phong exponent, wrap and the specular lobe's directional albedo over cos(theta_o).
@@ -200,29 +201,21 @@ class GameShader {
       // d the mirror direction R or the dominant direction (options.split_sum_direction); the chain and the DFG
       // table read by the kernels of game_ibl.sl (the text the exported shaders run).
       const kernel::IblBinding bind(m_ibl_texels);
-      const auto chain = [&](const Vec3& d, double roughness) -> Rgb {
-        return kernel::ggx_chain_read(d, ggx_chain_roughness(roughness), m_ibl_texels.cube_count, m_chain_texels->mapping);
-      };
-      Vec3 r = kernel::game_reflect(wo_world, sf.frame.n);
-      const kernel::DfgScaleBias ab = kernel::dfg_read(std::isfinite(wo.z) ? wo.z : 0.0, split->roughness, m_dfg->size);
+      const double mu = std::isfinite(wo.z) ? std::clamp(wo.z, 0.0, 1.0) : 0.0;
+      const double roughness = ggx_chain_roughness(split->roughness);
+      const kernel::DfgScaleBias ab = kernel::dfg_read(mu, roughness, m_dfg->size);
       Rgb spec;
       if (m_options.split_sum_direction == GameSplitSumDirection::filtered) {
         // Each part averaged over its own lobe by taps of the same chain (envmap/split_sum_taps.h).
         const SplitSumReads reads =
             split_sum_filtered_reads(m_baked->specular_ggx, sf.frame, wo, split->roughness, m_options.split_sum_taps);
         spec = Rgb(kernel::game_split_sum_specular_lobes(reads.a, reads.b, split->f0, split->f90, ab.a, ab.b));
-      } else if (m_lobes != nullptr) {
-        // Each part along and at the roughness of its own lobe's first moments (envmap/split_sum_lobes.h).
-        const SplitSumLobes lobes = split_sum_lobes(*m_lobes, wo.z, split->roughness);
-        const Vec3 da = kernel::game_split_sum_lobe_direction(sf.frame.n, r, lobes.a.angle);
-        const Vec3 db = kernel::game_split_sum_lobe_direction(sf.frame.n, r, lobes.b.angle);
-        spec = Rgb(kernel::game_split_sum_specular_lobes(chain(da, lobes.a.roughness), chain(db, lobes.b.roughness),
-                                                         split->f0, split->f90, ab.a, ab.b));
       } else {
-        if (m_options.split_sum_direction == GameSplitSumDirection::dominant) {
-          r = kernel::game_split_sum_direction(sf.frame.n, r, alpha_from_perceptual_roughness(split->roughness));
-        }
-        spec = Rgb(kernel::game_split_sum_specular(chain(r, split->roughness), split->f0, split->f90, ab.a, ab.b));
+        // The lookup (mirror, dominant or lobes), the chain reads and prefiltered (f0 A + f90 B): the kernel
+        // text game_split_sum_ambient, which the exported shaders run.
+        spec = Rgb(kernel::game_split_sum_ambient(sf.frame.n, wo_world, mu, roughness, split->f0, split->f90, ab,
+                                                  static_cast<int>(m_options.split_sum_direction),
+                                                  m_ibl_texels.cube_count, m_chain_texels->mapping, m_ibl_texels.lobe_size));
       }
       const double e = ab.a + ab.b;  // E(N.V) with F = 1, of the same table
       if (split->filament != nullptr && e > 0.0) spec = spec * Rgb(kernel::filament_energy_compensation(split->f0, e));

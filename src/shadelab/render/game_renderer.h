@@ -65,6 +65,9 @@ enum class GameGgxSpecular { split_sum, phong };
 // `filtered`: each part averaged over its own true lobe by split_sum_taps taps of the same chain, each read
 // with the footprint of its share of solid angle (envmap/split_sum_taps.h): the same storage, N reads.
 enum class GameSplitSumDirection { mirror, dominant, lobes, filtered };
+static_assert(static_cast<int>(GameSplitSumDirection::mirror) == kernel::SPLIT_SUM_LOOKUP_MIRROR &&
+              static_cast<int>(GameSplitSumDirection::dominant) == kernel::SPLIT_SUM_LOOKUP_DOMINANT &&
+              static_cast<int>(GameSplitSumDirection::lobes) == kernel::SPLIT_SUM_LOOKUP_LOBES);
 
 struct GameOptions {
   bool shadows = true;

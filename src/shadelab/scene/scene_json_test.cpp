@@ -87,7 +87,7 @@ TEST(SceneJson, EveryExampleSceneLoads) {
     for (const auto& m : scene->materials) EXPECT_NE(m.brdf, nullptr) << p << " " << m.name;
     found.insert(p.filename().string());
   }
-  for (const char* name : {"default.json", "furnace.json", "cornell.json", "hdri.json", "lights.json"}) {
+  for (const char* name : {"default.json", "furnace.json", "cornell.json", "hdri.json", "lights.json", "split_sum.json"}) {
     EXPECT_EQ(found.count(name), 1u) << name;
   }
 }
