@@ -357,6 +357,8 @@ Result<bool> write_shard(const fs::path& path, const ShardInfo& info, const Rend
 Result<ShardInfo> read_shard_info(const fs::path& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return file_error(path, fs::exists(path, ec) ? "not a regular file" : "no such file");
+  // Header sizes bounded by the file's before OpenEXR allocates from them (issue 40, finding 3).
+  if (const std::string why = exr_header_problem(path); !why.empty()) return file_error(path, "not a readable EXR file: " + why);
   try {
     Imf::InputFile in(path.c_str());
     const Imf::Header& header = in.header();
