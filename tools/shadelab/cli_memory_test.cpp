@@ -324,8 +324,7 @@ fs::path claiming_exr(const std::string& name, std::int32_t claimed) {
   WriteOptions o;
   o.exr_compression = ExrCompression::none;
   EXPECT_TRUE(write_image(one, p, o));
-  const std::string text = read_text(p);
-  std::vector<char> bytes(text.begin(), text.end());
+  std::string bytes = read_text(p);
   const std::string value = "hello";
   std::string attribute("comments\0string\0", 16);
   const auto size = static_cast<std::int32_t>(value.size());
@@ -337,10 +336,9 @@ fs::path claiming_exr(const std::string& name, std::int32_t claimed) {
   EXPECT_EQ(offset, offset_at + 8) << "not the expected layout";
   offset += attribute.size();
   std::memcpy(bytes.data() + offset_at, &offset, 8);
-  bytes.insert(bytes.begin() + 8, attribute.begin(), attribute.end());  // the first attribute, after magic and version
-  const std::size_t size_at = 8 + 16;
-  std::memcpy(bytes.data() + size_at, &claimed, 4);
-  write_bytes(p, bytes);
+  bytes = bytes.substr(0, 8) + attribute + bytes.substr(8);  // the first attribute, after magic and version
+  std::memcpy(bytes.data() + 8 + 16, &claimed, 4);
+  write_bytes(p, std::vector<char>(bytes.begin(), bytes.end()));
   return p;
 }
 
