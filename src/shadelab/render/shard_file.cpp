@@ -181,7 +181,7 @@ class SceneHasher {
     requires std::same_as<L, SceneLight>
   void add(const L& l) {
     add(static_cast<std::uint64_t>(l.index()));
-    std::visit([this](const auto& x) { add(x); }, l);
+    std::visit([this](const auto& x) { this->add(x); }, l);
   }
   void add(const SkyModel& s) {
     const auto& [sun_direction, sun_angular_radius_deg, sun_irradiance, zenith, horizon, ground] = s;
