@@ -313,6 +313,69 @@ TEST(MemoryBound, OutOfMemoryIsExitCodeTwoWithOneLine) {
   }
 }
 
+// issue 40, finding 3: a small valid EXR (1 x 1, float, uncompressed) with a string attribute "comments"
+// added to its header (the line offset moved by what was inserted), then that attribute's size patched to
+// `claimed` bytes. OpenEXR allocates a string attribute's claimed size before reading it: 0x7fffffff took
+// 2.1 GB before `compare` exited 2.
+fs::path claiming_exr(const std::string& name, std::int32_t claimed) {
+  const fs::path p = dir() / name;
+  Image one(1, 1);
+  one.set(0, 0, Rgb::gray(0.5));
+  WriteOptions o;
+  o.exr_compression = ExrCompression::none;
+  EXPECT_TRUE(write_image(one, p, o));
+  std::string bytes = read_text(p);
+  const std::string value = "hello";
+  std::string attribute("comments\0string\0", 16);
+  const auto size = static_cast<std::int32_t>(value.size());
+  attribute.append(reinterpret_cast<const char*>(&size), 4).append(value);
+  // The file ends with the one offset (uint64), then the scan line: y (int32), byte count (int32), B G R floats.
+  const std::size_t offset_at = bytes.size() - 8 - 4 - 4 - 12;
+  std::uint64_t offset = 0;
+  std::memcpy(&offset, bytes.data() + offset_at, 8);
+  EXPECT_EQ(offset, offset_at + 8) << "not the expected layout";
+  offset += attribute.size();
+  std::memcpy(bytes.data() + offset_at, &offset, 8);
+  bytes = bytes.substr(0, 8) + attribute + bytes.substr(8);  // the first attribute, after magic and version
+  std::memcpy(bytes.data() + 8 + 16, &claimed, 4);
+  write_bytes(p, std::vector<char>(bytes.begin(), bytes.end()));
+  return p;
+}
+
+// Header sizes are bounded by the file's size before OpenEXR allocates anything: with the attribute's true
+// size the file reads (the construction is a valid EXR); claiming 0x7fffffff bytes (or a negative size, or
+// one byte more than the file holds) it is one line naming the file and the attribute, exit 2, and the CLI
+// (`compare`, and `merge` reading it as a part) does so in 256 MiB of address space: nothing in proportion to
+// the claim was allocated. Before the check: `compare` needed 2.1 GB, and under this limit said "out of memory".
+TEST(MemoryBound, ExrHeaderAttributeSizesAreBoundedByTheFile) {
+  SKIP_UNDER_ASAN();
+  const fs::path valid = claiming_exr("valid.exr", 5);
+  const auto ok = read_image(valid);
+  ASSERT_TRUE(ok) << ok.error().message;
+  EXPECT_EQ(ok->at(0, 0).g, 0.5);
+  const std::uint64_t file_bytes = fs::file_size(valid);
+  for (const std::int32_t claimed : {std::int32_t{0x7fffffff}, std::int32_t{-1}, static_cast<std::int32_t>(file_bytes)}) {
+    const fs::path bad = claiming_exr("claims.exr", claimed);
+    const auto r = read_image(bad);
+    ASSERT_FALSE(r) << claimed;
+    EXPECT_NE(r.error().message.find("read_image: '" + bad.string() + "': header attribute 'comments' (type 'string') claims " +
+                                     std::to_string(claimed) + " bytes, but the file has "),
+              std::string::npos)
+        << r.error().message;
+  }
+  const fs::path bad = claiming_exr("claims.exr", 0x7fffffff);
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"compare", bad.string(), valid.string()},
+        std::vector<std::string>{"merge", bad.string(), "--out", (dir() / "merged.exr").string()}}) {
+    const auto r = run_cli_limited(256 * MiB, args);
+    EXPECT_EQ(r.code, 2) << args[0] << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("'" + bad.string() + "'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("header attribute 'comments' (type 'string') claims 2147483647 bytes"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("out of memory"), std::string::npos) << r.err;
+  }
+}
+
 // The pixel cap itself: one pixel more than max_render_pixels is refused from the scene, exit code 2.
 TEST(MemoryBound, CameraBeyondThePixelCapIsRefused) {
   const std::string over = R"({"camera": {"width": 16384, "height": 2049}})";

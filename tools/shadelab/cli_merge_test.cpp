@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cli_run.h"
+#include "shadelab/image/image_io.h"
 #include "shadelab/render/shard_file.h"
 
 namespace {
@@ -163,6 +164,120 @@ TEST(CliMerge, NonFiniteSamplesInAPartAreReportedAndExitOne) {
   const auto quiet = run("render " + scene + " --shard 0/2 --split samples --out " + p0.string());
   EXPECT_EQ(quiet.code, 1);
   EXPECT_NE(quiet.err.find("holds 2 samples that were NaN or infinite"), std::string::npos) << quiet.err;
+}
+
+// issue 40, finding 2: a scene whose files the tests write, so that one thing can differ at a time: a filament
+// material's texture bindings (`binding`, JSON members of its "textures"), or the content of a file under an
+// unchanged name (the texture tex.exr, the mesh tri.obj, the environment sky.exr). 24 x 16, 4 spp.
+struct SceneFiles {
+  std::string binding;  // e.g. "\"base_color\": \"checker\""; empty: no texture bound
+  float texel = 0.5f;   // tex.exr's texels (a lambert floor's kd)
+  double apex = 1.0;    // tri.obj's top vertex height
+  float sky = 0.3f;     // sky.exr's radiance
+};
+
+fs::path write_scene(const fs::path& dir, const SceneFiles& f) {
+  fs::create_directories(dir);
+  shadelab::Image tex(4, 4);
+  for (std::size_t k = 0; k < tex.data.size(); ++k) tex.data[k] = f.texel + 0.01f * static_cast<float>(k % 5);
+  EXPECT_TRUE(shadelab::write_image(tex, dir / "tex.exr"));
+  shadelab::Image sky(16, 8);
+  for (std::size_t k = 0; k < sky.data.size(); ++k) sky.data[k] = f.sky * (1.0f + 0.02f * static_cast<float>(k % 7));
+  EXPECT_TRUE(shadelab::write_image(sky, dir / "sky.exr"));
+  std::ofstream(dir / "tri.obj") << "v -1.5 0 0.5\nv -0.5 0 0.5\nv -1 " << f.apex << " 0.5\nf 1 2 3\n";
+  const fs::path scene_file = dir / "scene.json";
+  std::ofstream(scene_file) << R"({
+  "units": "radiometric",
+  "camera": { "position": [0, 1.2, 3], "look_at": [0, 0.4, 0], "fov": 45, "width": 24, "height": 16 },
+  "render": { "spp": 4, "max_depth": 3, "seed": 7 },
+  "textures": {
+    "tex": { "file": "tex.exr" },
+    "checker": { "procedural": "checker", "size": 16, "squares": 4, "color_a": 0.9, "color_b": 0.1 },
+    "mr": { "procedural": "checker", "size": 16, "squares": 4, "color_a": 0.2, "color_b": 1.0, "data": true }
+  },
+  "materials": {
+    "paint": { "model": "filament", "params": { "base_color": [0.9, 0.7, 0.5], "metallic": 0.5, "perceptual_roughness": 0.6 })"
+                            << (f.binding.empty() ? "" : ", \"textures\": { " + f.binding + " }") << R"( },
+    "floor": { "model": "lambert", "params": { "kd": 0.5 }, "textures": { "kd": "tex" } }
+  },
+  "shapes": [
+    { "type": "quad", "corner": [-2, 0, 2], "u": [4, 0, 0], "v": [0, 0, -4], "material": "floor" },
+    { "type": "sphere", "center": [0.3, 0.5, 0], "radius": 0.5, "material": "paint" },
+    { "type": "mesh", "file": "tri.obj", "material": "floor" }
+  ],
+  "lights": [ { "type": "point", "position": [1, 2, 2], "color": [1, 1, 1], "power": 20 } ],
+  "environment": { "file": "sky.exr" }
+})";
+  return scene_file;
+}
+
+fs::path scene_part(const fs::path& scene_file, int i, int n, const fs::path& out) {
+  const auto r = run("render " + scene_file.string() + " --shard " + std::to_string(i) + "/" + std::to_string(n) + " --out " + out.string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  return out;
+}
+
+// A merge of parts of two renders: exit 2, one line naming both parts and the scene hash, nothing written.
+void expect_refused_merge(const fs::path& first, const fs::path& second, const fs::path& out) {
+  const auto r = run("merge " + first.string() + " " + second.string() + " --out " + out.string());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("'" + second.string() + "': from another render: scene_hash "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("in '" + first.string() + "'"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// The finding's reproducer: two scenes that differ only in whether the filament material binds a texture as
+// base_color (or metallic_roughness). Part 0 of one and part 1 of the other merged with exit 0 and a wrong
+// image (RMSE 0.196 in the report); a resumed shard skipped the other scene's part as "already in".
+TEST(CliMerge, PartsOfScenesThatDifferOnlyInAFilamentTextureBindingAreRefused) {
+  for (const std::string binding : {"\"base_color\": \"checker\"", "\"metallic_roughness\": \"mr\""}) {
+    const fs::path dir = temp_dir() / ("binding_" + binding.substr(1, 4));
+    SceneFiles with;
+    with.binding = binding;
+    const fs::path bound = write_scene(dir / "bound", with);
+    const fs::path plain = write_scene(dir / "plain", SceneFiles());
+    const fs::path b0 = scene_part(bound, 0, 2, dir / "bound-0.exr");
+    const fs::path b1 = scene_part(bound, 1, 2, dir / "bound-1.exr");
+    const fs::path p1 = scene_part(plain, 1, 2, dir / "plain-1.exr");
+    expect_refused_merge(b0, p1, dir / "mixed.exr");
+    expect_refused_merge(p1, b0, dir / "mixed.exr");
+    const auto check = run("merge --check " + b0.string() + " " + p1.string());
+    EXPECT_EQ(check.code, 2) << check.err;
+    // The parts of one scene still merge.
+    EXPECT_EQ(run("merge " + b0.string() + " " + b1.string() + " --out " + (dir / "bound.exr").string()).code, 0) << binding;
+    // Resume: the other scene's part 1 where this scene's part 1 goes is rendered again, not skipped.
+    const auto resumed = run("render " + plain.string() + " --shard 1/2 --out " + b1.string() + " --json");
+    EXPECT_EQ(resumed.code, 0) << resumed.err;
+    EXPECT_EQ(nlohmann::json::parse(resumed.out)["skipped"], false) << binding;
+    EXPECT_NE(resumed.err.find("from another render: scene_hash"), std::string::npos) << resumed.err;
+    EXPECT_NE(resumed.err.find("rendering it again"), std::string::npos) << resumed.err;
+    EXPECT_EQ(bytes(b1), bytes(p1)) << "the part rendered again is the plain scene's";
+  }
+}
+
+// The content of a file the scene reads, under the same name: the texture, the mesh or the environment map
+// rewritten between two shards of one scene file. The parts do not merge and the older part is not resumed.
+TEST(CliMerge, PartsOfASceneWhoseFilesChangedBetweenThemAreRefused) {
+  SceneFiles texture, mesh, environment;
+  texture.texel = 0.25f;
+  mesh.apex = 1.25;
+  environment.sky = 0.35f;
+  const std::vector<std::pair<std::string, SceneFiles>> changes{{"texture", texture}, {"mesh", mesh}, {"environment", environment}};
+  for (const auto& [what, changed] : changes) {
+    const fs::path dir = temp_dir() / ("content_" + what);
+    const fs::path scene_file = write_scene(dir, SceneFiles());
+    const fs::path p0 = scene_part(scene_file, 0, 2, dir / "part-0.exr");
+    write_scene(dir, changed);  // the same file names, other content
+    const fs::path p1 = scene_part(scene_file, 1, 2, dir / "part-1.exr");
+    expect_refused_merge(p0, p1, dir / "merged.exr");
+    const auto resumed = run("render " + scene_file.string() + " --shard 0/2 --out " + p0.string() + " --json");
+    EXPECT_EQ(resumed.code, 0) << resumed.err;
+    EXPECT_EQ(nlohmann::json::parse(resumed.out)["skipped"], false) << what;
+    EXPECT_NE(resumed.err.find("scene_hash"), std::string::npos) << resumed.err;
+    EXPECT_EQ(run("merge " + p0.string() + " " + p1.string() + " --out " + (dir / "merged.exr").string()).code, 0) << what;
+  }
 }
 
 }  // namespace

@@ -142,8 +142,12 @@ void run_shard(const RenderCliOptions& o, const Scene& scene, RenderOptions ro) 
       }
       return;
     }
-    warn("'" + out.string() + "' exists but is not " + label + " of this render (" +
-         (old ? std::string("another shard or render") : old.error().message) + "): rendering it again");
+    std::string why;
+    if (!old) why = old.error().message;
+    else if (const std::string d = identity_difference(*old, info); !d.empty()) why = "from another render: " + d;
+    else if (old->index != info.index) why = "shard " + std::to_string(old->index) + "/" + std::to_string(old->count);
+    else why = "an unreadable or altered part";
+    warn("'" + out.string() + "' exists but is not " + label + " of this render (" + why + "): rendering it again");
   }
   ProgressBar bar(label, o.progress);
   ro.progress = [&](double f, int) { bar.update(f); };

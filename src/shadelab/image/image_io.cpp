@@ -229,6 +229,7 @@ const char* sample_type_name(Imf::PixelType type) {
 
 Result<Image> read_exr(const fs::path& path, ReadInfo& info, std::uint64_t budget) {
   limit_openexr();
+  if (auto ok = check_exr_header(path); !ok) return ok.error();
   Imf::InputFile file(path.c_str());
   const Imf::Header& header = file.header();
   const Imath::Box2i display_window = header.displayWindow();
@@ -805,6 +806,72 @@ Result<bool> write_atomically(const fs::path& target, const std::vector<char>& b
 }
 
 }  // namespace
+
+Result<bool> check_exr_header(const fs::path& path, const char* who) {
+  if (std::string why = exr_header_problem(path); !why.empty()) return file_error(who, path, why);
+  return true;
+}
+
+std::string exr_header_problem(const fs::path& path) {
+  auto fail = [](const std::string& why) { return why; };
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fail("cannot open the file");
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) return fail("cannot read file size: " + ec.message());
+  std::uint64_t pos = 0;
+  auto read_bytes = [&](unsigned char* out, std::size_t n) {
+    if (!in.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n))) return false;
+    pos += n;
+    return true;
+  };
+  unsigned char head[8];
+  if (size < 8 || !read_bytes(head, 8)) return fail("not an OpenEXR file (shorter than its 8-byte magic number and version)");
+  if (head[0] != 0x76 || head[1] != 0x2f || head[2] != 0x31 || head[3] != 0x01) return fail("not an OpenEXR file (no magic number)");
+  const std::uint32_t flags = static_cast<std::uint32_t>(head[5]) | static_cast<std::uint32_t>(head[6]) << 8u |
+                              static_cast<std::uint32_t>(head[7]) << 16u;
+  const bool long_names = (flags & 0x4u) != 0;  // version bit 10: names up to 255 bytes, else 31
+  const bool multipart = (flags & 0x10u) != 0;  // version bit 12: headers until an empty one
+  const std::size_t max_name = long_names ? 255 : 31;
+  // A NUL-terminated name or type of at most max_name bytes; "" at the end of a header.
+  auto read_name = [&](std::string& out, const char* what, const std::string& attribute) -> std::string {
+    out.clear();
+    for (;;) {
+      unsigned char c = 0;
+      if (!read_bytes(&c, 1)) return fail(std::string("the header ends inside ") + what + attribute + " (a truncated file)");
+      if (c == 0) return {};
+      if (out.size() == max_name) {
+        return fail(std::string(what) + attribute + " '" + printable(out, 80) + "...' is longer than " + std::to_string(max_name) + " bytes");
+      }
+      out.push_back(static_cast<char>(c));
+    }
+  };
+  for (;;) {  // each header of the file
+    int attributes = 0;
+    for (;; ++attributes) {
+      std::string name, type;
+      if (auto why = read_name(name, "an attribute name", ""); !why.empty()) return why;
+      if (name.empty()) break;
+      const std::string quoted = " of attribute '" + printable(name, 80) + "'";
+      if (auto why = read_name(type, "the type", quoted); !why.empty()) return why;
+      unsigned char b[4];
+      if (!read_bytes(b, 4)) return fail("the header ends inside the size" + quoted + " (a truncated file)");
+      const auto claimed = static_cast<std::int32_t>(static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8u |
+                                                     static_cast<std::uint32_t>(b[2]) << 16u | static_cast<std::uint32_t>(b[3]) << 24u);
+      const std::uint64_t left = size > pos ? size - pos : 0;
+      if (claimed < 0 || static_cast<std::uint64_t>(claimed) > left) {
+        return fail("header attribute '" + printable(name, 80) + "' (type '" + printable(type, 80) + "') claims " +
+                    std::to_string(claimed) + " bytes, but the file has " + std::to_string(left) + " left after it");
+      }
+      in.seekg(claimed, std::ios::cur);
+      pos += static_cast<std::uint64_t>(claimed);
+      if (!in) return fail("cannot read the header");
+    }
+    // A single-part file has one header; a multi-part file's list of headers ends with an empty one.
+    if (!multipart || attributes == 0) break;
+  }
+  return {};
+}
 
 Result<Image> read_image(const fs::path& path, ReadInfo* info) { return read_image(path, info, image_read_budget_bytes); }
 

@@ -98,6 +98,17 @@ Result<bool> write_file_atomically(const std::filesystem::path& path, const std:
 Result<bool> write_files_atomically(
     const std::vector<std::pair<std::filesystem::path, std::vector<char>>>& files);
 
+// Walks an OpenEXR file's header(s) before OpenEXR reads them: the magic number, the version field, and
+// every attribute (name, type, a 4-byte size, the value), checking that each name is terminated within the
+// limit, that no size is negative, and that no attribute claims more bytes than the file has left after it.
+// OpenEXR 3.1 allocates an attribute's value from its claimed size before reading it and has no setting that
+// bounds it (issue 40, finding 3: a 1,124-byte file whose string attribute claimed 0x7fffffff bytes took
+// 2.1 GB), so every EXR reader here calls this first. Reads the header in small pieces; allocates nothing in
+// proportion to a claimed size. The Error (`who: 'FILE': ...`) names the file and the attribute.
+Result<bool> check_exr_header(const std::filesystem::path& path, const char* who = "read_image");
+// The same walk: what is wrong with the header (one line, without the file's name), or "" when nothing is.
+std::string exr_header_problem(const std::filesystem::path& path);
+
 // Writes `image` by extension: .exr (OpenEXR, R G B channels, options above), .hdr / .pic (Radiance RGBE;
 // negative and non-finite values are written as 0, as RGBE cannot hold them), .png (8-bit sRGB, exposure
 // applied, clamped to [0, 1], rounded to the nearest code, NaN -> 0). Returns true or an Error.

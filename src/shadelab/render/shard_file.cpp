@@ -11,9 +11,11 @@
 
 #include <algorithm>
 #include <bit>
+#include <concepts>
 #include <cstring>
 #include <exception>
 #include <map>
+#include <variant>
 
 #include "shadelab/image/image_io.h"
 #include "shadelab/sampling/owen.h"
@@ -26,38 +28,185 @@ namespace fs = std::filesystem;
 
 constexpr const char* shard_format = "shadelab-shard/1";
 constexpr const char* shard_attribute = "shadelab.shard";
+// Changes when the fingerprint's walk changes, so that no two walks can give the same hash by chance.
+constexpr const char* scene_fingerprint_version = "shadelab-scene-fingerprint/2";
 constexpr const char* channel_colour[3] = {"R", "G", "B"};
 
 std::string sum_channel(int c, int word) { return std::string("sum.") + channel_colour[c] + ".w" + std::to_string(word); }
 
-// A fingerprint, not a cryptographic hash: every value goes through SplitMix64's finalizer, chained.
+// A fingerprint, not a cryptographic hash: every 64-bit word goes through SplitMix64's finalizer, chained
+// with its position, so reordered or shifted data hashes differently.
 class Hasher {
  public:
   void u64(std::uint64_t v) { m_h = mix64(m_h ^ mix64(v + m_n++)); }
-  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
-  void i(long long v) { u64(static_cast<std::uint64_t>(v)); }
-  void str(const std::string& s) {
-    u64(s.size());
-    for (std::size_t k = 0; k < s.size(); k += 8) {
-      std::uint64_t w = 0;
-      std::memcpy(&w, s.data() + k, std::min<std::size_t>(8, s.size() - k));
-      u64(w);
-    }
-  }
-  void vec(const Vec3& v) { f64(v.x), f64(v.y), f64(v.z); }
-  void rgb(const Rgb& c) { f64(c.r), f64(c.g), f64(c.b); }
-  void image(const Image& im) {
-    i(im.width), i(im.height);
-    for (std::size_t k = 0; k + 1 < im.data.size(); k += 2) {
-      u64(std::bit_cast<std::uint32_t>(im.data[k]) | (static_cast<std::uint64_t>(std::bit_cast<std::uint32_t>(im.data[k + 1])) << 32u));
-    }
-    if (im.data.size() % 2 == 1) u64(std::bit_cast<std::uint32_t>(im.data.back()));
-  }
   std::uint64_t value() const { return m_h; }
 
  private:
   std::uint64_t m_h = 0x243f6a8885a308d3ULL;
   std::uint64_t m_n = 0;
+};
+
+// The scene fingerprint's walk over a Scene: robust by construction, not a list kept by hand.
+//
+// - Every struct is taken apart with a structured binding, which must name every data member: a member added
+//   to Scene, Camera, Texture, Material, a shape, a light, Environment, SkyModel, RenderSettings, Image,
+//   GlossEncoding, Vec2/Vec3 or Rgb stops this file compiling until it is hashed here, or left out below
+//   with its reason. (That is the check the issue 40 finding lacked: Material's base_color_texture and
+//   metallic_roughness_texture were added after the list was written, and two scenes differing only there
+//   gave parts that merged.) The light variant is visited with one overload per alternative and no catch-all,
+//   so a new light type does not compile without one either.
+// - Values are hashed as the renderer sees them, after loading: texels after decoding, vertices after the
+//   transform, the environment map's texels. So the content of every file the scene read is covered, and
+//   its name is not (a scene moved to another folder or machine still matches).
+// - Deterministic across runs and machines: doubles and floats by their bit patterns, integers widened to 64
+//   bits, sizes before every sequence and string; no pointer, no padding byte, no std::hash.
+// - Left out, each for its reason: Scene::source, Texture::source, MeshShape::source, Environment::source
+//   (paths, for messages); Material::brdf (built from model and params, which are hashed); RenderSettings'
+//   spp, max_depth and seed (fields of their own in ShardInfo, as the render resolved them: options may
+//   override the scene's) and threads (the image is the same for any thread count).
+class SceneHasher {
+ public:
+  explicit SceneHasher(Hasher& h) : m_h(h) {}
+
+  void add(std::uint64_t v) { m_h.u64(v); }
+  void add(std::uint32_t v) { m_h.u64(v); }
+  void add(int v) { m_h.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(v))); }
+  // bool and the variant only as themselves: a pointer member must not pass as a bool, nor a new light type
+  // through the variant's converting constructor (which would recurse instead of failing to compile).
+  template <class B>
+    requires std::same_as<B, bool>
+  void add(B v) {
+    m_h.u64(v ? 1u : 0u);
+  }
+  void add(double v) { m_h.u64(std::bit_cast<std::uint64_t>(v)); }
+  void add(const std::string& s) {
+    add(static_cast<std::uint64_t>(s.size()));
+    for (std::size_t k = 0; k < s.size(); k += 8) {
+      std::uint64_t w = 0;
+      std::memcpy(&w, s.data() + k, std::min<std::size_t>(8, s.size() - k));
+      add(w);
+    }
+  }
+  template <class A, class B>
+  void add(const std::pair<A, B>& p) {
+    add(p.first), add(p.second);
+  }
+  template <class T>
+  void add(const std::vector<T>& v) {
+    add(static_cast<std::uint64_t>(v.size()));
+    for (const T& x : v) add(x);
+  }
+  void add(const Vec2& v) {
+    const auto& [x, y] = v;
+    add(x), add(y);
+  }
+  void add(const Vec3& v) {
+    const auto& [x, y, z] = v;
+    add(x), add(y), add(z);
+  }
+  void add(const Rgb& c) {
+    const auto& [r, g, b] = c;
+    add(r), add(g), add(b);
+  }
+  void add(const Image& im) {
+    const auto& [width, height, data] = im;
+    add(width), add(height), add(static_cast<std::uint64_t>(data.size()));
+    // Two floats a word: the cost of a large environment map is one pass over its texels.
+    std::size_t k = 0;
+    for (; k + 1 < data.size(); k += 2) {
+      add(std::bit_cast<std::uint32_t>(data[k]) | (static_cast<std::uint64_t>(std::bit_cast<std::uint32_t>(data[k + 1])) << 32u));
+    }
+    if (k < data.size()) add(std::bit_cast<std::uint32_t>(data[k]));
+  }
+  void add(const Camera& c) {
+    const auto& [position, look_at, up, vfov_deg, width, height] = c;
+    add(position), add(look_at), add(up), add(vfov_deg), add(width), add(height);
+  }
+  void add(const Texture& t) {
+    const auto& [name, source, image, data] = t;
+    (void)source;  // the path or generator, for messages; the texels are hashed
+    add(name), add(image), add(data);
+  }
+  void add(const GlossEncoding& g) {
+    const auto& [n_black, n_white] = g;
+    add(n_black), add(n_white);
+  }
+  void add(const Material& m) {
+    const auto& [name, model, params, brdf, kd_texture, ks_texture, gloss_texture, normal_texture, base_color_texture,
+                 metallic_roughness_texture, gloss_encoding, uv_scale, emission] = m;
+    (void)brdf;  // built from model and params
+    add(name), add(model), add(params);
+    add(kd_texture), add(ks_texture), add(gloss_texture), add(normal_texture), add(base_color_texture),
+        add(metallic_roughness_texture);
+    add(gloss_encoding), add(uv_scale), add(emission);
+  }
+  void add(const SphereShape& s) {
+    const auto& [center, radius, material] = s;
+    add(center), add(radius), add(material);
+  }
+  void add(const QuadShape& q) {
+    const auto& [corner, u, v, material] = q;
+    add(corner), add(u), add(v), add(material);
+  }
+  void add(const DiskShape& d) {
+    const auto& [center, normal, radius, material] = d;
+    add(center), add(normal), add(radius), add(material);
+  }
+  void add(const MeshShape& m) {
+    const auto& [source, positions, normals, uvs, indices, material] = m;
+    (void)source;  // the path, for messages; the vertices are hashed
+    add(positions), add(normals), add(uvs), add(indices), add(material);
+  }
+  void add(const DirectionalLight& l) {
+    const auto& [to_light, irradiance, game_sh] = l;
+    add(to_light), add(irradiance), add(game_sh);
+  }
+  void add(const PointLight& l) {
+    const auto& [position, intensity] = l;
+    add(position), add(intensity);
+  }
+  void add(const SpotLight& l) {
+    const auto& [position, axis, intensity, cos_inner, cos_outer] = l;
+    add(position), add(axis), add(intensity), add(cos_inner), add(cos_outer);
+  }
+  void add(const SphereLight& l) {
+    const auto& [center, radius, radiance] = l;
+    add(center), add(radius), add(radiance);
+  }
+  void add(const HemisphereLight& l) {
+    const auto& [up, sky, ground] = l;
+    add(up), add(sky), add(ground);
+  }
+  template <class L>
+    requires std::same_as<L, SceneLight>
+  void add(const L& l) {
+    add(static_cast<std::uint64_t>(l.index()));
+    std::visit([this](const auto& x) { this->add(x); }, l);
+  }
+  void add(const SkyModel& s) {
+    const auto& [sun_direction, sun_angular_radius_deg, sun_irradiance, zenith, horizon, ground] = s;
+    add(sun_direction), add(sun_angular_radius_deg), add(sun_irradiance), add(zenith), add(horizon), add(ground);
+  }
+  void add(const Environment& e) {
+    const auto& [kind, uniform, latlong, source, rotation_deg, scale, sky] = e;
+    (void)source;  // the path, for messages; the texels are hashed
+    add(static_cast<int>(kind)), add(uniform), add(latlong), add(rotation_deg), add(scale), add(sky);
+  }
+  void add(const RenderSettings& r) {
+    const auto& [spp, max_depth, seed, threads, rr_depth] = r;
+    (void)spp, (void)max_depth, (void)seed;  // ShardInfo's own fields, as resolved for the render
+    (void)threads;                           // no effect on the image
+    add(rr_depth);
+  }
+  void add(const Scene& s) {
+    const auto& [source, camera, textures, materials, spheres, quads, disks, meshes, lights, environment, settings] = s;
+    (void)source;  // the path, for messages
+    add(camera), add(textures), add(materials), add(spheres), add(quads), add(disks), add(meshes), add(lights),
+        add(environment), add(settings);
+  }
+
+ private:
+  Hasher& m_h;
 };
 
 Error file_error(const fs::path& path, const std::string& why) { return make_error("'" + path.string() + "': " + why); }
@@ -92,56 +241,9 @@ nlohmann::json to_json(const ShardInfo& s) {
 
 std::string scene_fingerprint(const Scene& scene) {
   Hasher h;
-  const Camera& c = scene.camera;
-  h.vec(c.position), h.vec(c.look_at), h.vec(c.up), h.f64(c.vfov_deg), h.i(c.width), h.i(c.height);
-  h.i(static_cast<long long>(scene.textures.size()));
-  for (const Texture& t : scene.textures) h.str(t.name), h.i(t.data ? 1 : 0), h.image(t.image);
-  h.i(static_cast<long long>(scene.materials.size()));
-  for (const Material& m : scene.materials) {
-    h.str(m.name), h.str(m.model);
-    h.i(static_cast<long long>(m.params.size()));
-    for (const auto& [k, v] : m.params) h.str(k), h.str(v);
-    h.i(m.kd_texture), h.i(m.ks_texture), h.i(m.gloss_texture), h.i(m.normal_texture);
-    h.f64(m.gloss_encoding.n_black), h.f64(m.gloss_encoding.n_white);
-    h.f64(m.uv_scale.x), h.f64(m.uv_scale.y), h.rgb(m.emission);
-  }
-  h.i(static_cast<long long>(scene.spheres.size()));
-  for (const auto& s : scene.spheres) h.vec(s.center), h.f64(s.radius), h.i(s.material);
-  h.i(static_cast<long long>(scene.quads.size()));
-  for (const auto& q : scene.quads) h.vec(q.corner), h.vec(q.u), h.vec(q.v), h.i(q.material);
-  h.i(static_cast<long long>(scene.disks.size()));
-  for (const auto& d : scene.disks) h.vec(d.center), h.vec(d.normal), h.f64(d.radius), h.i(d.material);
-  h.i(static_cast<long long>(scene.meshes.size()));
-  for (const auto& m : scene.meshes) {
-    h.i(static_cast<long long>(m.positions.size()));
-    for (const auto& p : m.positions) h.vec(p);
-    h.i(static_cast<long long>(m.normals.size()));
-    for (const auto& n : m.normals) h.vec(n);
-    h.i(static_cast<long long>(m.uvs.size()));
-    for (const auto& t : m.uvs) h.f64(t.x), h.f64(t.y);
-    h.i(static_cast<long long>(m.indices.size()));
-    for (auto k : m.indices) h.u64(k);
-    h.i(m.material);
-  }
-  h.i(static_cast<long long>(scene.lights.size()));
-  for (const auto& l : scene.lights) {
-    h.i(static_cast<long long>(l.index()));
-    std::visit(
-        [&](const auto& x) {
-          using T = std::decay_t<decltype(x)>;
-          if constexpr (std::is_same_v<T, DirectionalLight>) h.vec(x.to_light), h.rgb(x.irradiance);
-          if constexpr (std::is_same_v<T, PointLight>) h.vec(x.position), h.rgb(x.intensity);
-          if constexpr (std::is_same_v<T, SpotLight>) h.vec(x.position), h.vec(x.axis), h.rgb(x.intensity), h.f64(x.cos_inner), h.f64(x.cos_outer);
-          if constexpr (std::is_same_v<T, SphereLight>) h.vec(x.center), h.f64(x.radius), h.rgb(x.radiance);
-          if constexpr (std::is_same_v<T, HemisphereLight>) h.vec(x.up), h.rgb(x.sky), h.rgb(x.ground);
-        },
-        l);
-  }
-  const Environment& e = scene.environment;
-  h.i(static_cast<long long>(e.kind)), h.rgb(e.uniform), h.image(e.latlong), h.f64(e.rotation_deg), h.f64(e.scale);
-  h.vec(e.sky.sun_direction), h.f64(e.sky.sun_angular_radius_deg), h.rgb(e.sky.sun_irradiance);
-  h.rgb(e.sky.zenith), h.rgb(e.sky.horizon), h.rgb(e.sky.ground);
-  h.i(scene.settings.rr_depth);
+  SceneHasher walk(h);
+  walk.add(std::string(scene_fingerprint_version));
+  walk.add(scene);
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.value()));
   return hex;
@@ -161,6 +263,22 @@ std::vector<std::pair<std::string, std::string>> ShardInfo::render_identity() co
           {"count", std::to_string(count)},
           {"tile_size", std::to_string(tile_size)},
           {"fixed_point_bits", std::to_string(fixed_point_bits)}};
+}
+
+std::string identity_difference(const ShardInfo& got, const ShardInfo& want) {
+  const auto g = got.render_identity();
+  const auto w = want.render_identity();
+  for (std::size_t f = 0; f < w.size(); ++f) {
+    if (w[f].second == g[f].second) continue;
+    std::string why = g[f].first + " " + g[f].second + ", but " + w[f].second;
+    // The hash alone says nothing to a person: say that the scenes differ, and which files they came from.
+    if (g[f].first == "scene_hash") {
+      why += " (another scene, or the scene's content differs: its camera, materials, textures, meshes, lights or "
+             "environment; scene '" + got.scene + "' against '" + want.scene + "')";
+    }
+    return why;
+  }
+  return {};
 }
 
 ShardSpec ShardInfo::spec() const { return {index, count, split == "tiles" ? ShardSplit::tiles : ShardSplit::samples}; }
@@ -239,6 +357,8 @@ Result<bool> write_shard(const fs::path& path, const ShardInfo& info, const Rend
 Result<ShardInfo> read_shard_info(const fs::path& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return file_error(path, fs::exists(path, ec) ? "not a regular file" : "no such file");
+  // Header sizes bounded by the file's before OpenEXR allocates from them (issue 40, finding 3).
+  if (const std::string why = exr_header_problem(path); !why.empty()) return file_error(path, "not a readable EXR file: " + why);
   try {
     Imf::InputFile in(path.c_str());
     const Imf::Header& header = in.header();
@@ -366,15 +486,8 @@ Result<MergeStatus> check_shards(const std::vector<fs::path>& parts) {
     if (!info) return info.error();
     if (k == 0) {
       status.first = *info;
-    } else {
-      const auto want = status.first.render_identity();
-      const auto got = info->render_identity();
-      for (std::size_t f = 0; f < want.size(); ++f) {
-        if (want[f].second != got[f].second) {
-          return file_error(parts[k], "from another render: " + got[f].first + " " + got[f].second + ", but " + want[f].second +
-                                          " in '" + parts[0].string() + "'");
-        }
-      }
+    } else if (const std::string why = identity_difference(*info, status.first); !why.empty()) {
+      return file_error(parts[k], "from another render: " + why + " in '" + parts[0].string() + "'");
     }
     if (const auto it = seen.find(info->index); it != seen.end()) {
       return file_error(parts[k], "shard " + std::to_string(info->index) + "/" + std::to_string(info->count) +

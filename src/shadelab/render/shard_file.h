@@ -30,9 +30,14 @@ namespace shadelab {
 // integrator, accumulation): parts from different versions are never merged.
 inline constexpr const char* render_algorithm_version = "shadelab-pt-2 owen-sobol-4d fixed-40";
 
-// A hash (16 hex digits) of everything in the scene that changes the image: camera, materials and their
-// parameters, textures texel by texel, shapes, meshes vertex by vertex, lights, environment (image texels
-// included) and rr_depth. Not spp, max_depth, seed or threads: those are separate fields of ShardInfo.
+// A hash (16 hex digits) of everything in the Scene that changes the image, as the renderer sees it after
+// loading: the camera, every field of every material (model, parameters, every texture binding), every
+// texture texel by texel, every shape, meshes vertex by vertex, every light, the environment (map texels
+// included) and rr_depth. So two scene files give the same hash only when they render the same, and a file a
+// scene reads (mesh, texture, environment) is covered by its content, not its name. Not the paths, nor spp,
+// max_depth, seed (separate fields of ShardInfo) or threads. Every struct is walked by a structured binding
+// (shard_file.cpp), so a member added to Scene or any struct in it does not compile until it is hashed or
+// named as left out. Deterministic across runs and machines; one pass over the texels and vertices.
 std::string scene_fingerprint(const Scene& scene);
 
 struct ShardInfo {
@@ -61,6 +66,9 @@ struct ShardInfo {
 // The description of the shard options.shard of the scene at spp and max_depth (the resolved values); a
 // finished render's nonfinite count is set by the caller. A resumed run compares an existing part with it.
 ShardInfo make_shard_info(const Scene& scene, const RenderOptions& options, int spp, int max_depth);
+// The first identity field in which `got` differs from `want`, as "NAME GOT, but WANT" (for scene_hash with
+// the two scenes' names); empty when both are parts of one render.
+std::string identity_difference(const ShardInfo& got, const ShardInfo& want);
 // Whether two descriptions are of the same shard of the same render (identity, index and sample range).
 bool same_shard(const ShardInfo& a, const ShardInfo& b);
 

@@ -6,7 +6,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
+#include <map>
+#include <variant>
 
 #include "shadelab/image/image_io.h"
 #include "shadelab/render/test_scenes.h"
@@ -250,6 +253,185 @@ TEST_F(ShardDir, ASceneNameThatIsNotUtf8IsWrittenAndMerges) {
   const auto merged = merge_shards(files);
   ASSERT_TRUE(merged) << merged.error().message;
   EXPECT_EQ(std::memcmp(merged->result.beauty.data.data(), ref.beauty.data.data(), ref.beauty.data.size() * sizeof(float)), 0);
+}
+
+// A scene with one of everything the fingerprint walks, every texture binding of material 0 set, so that each
+// member can be changed alone (it is not rendered: indices need not suit the models).
+Scene fingerprint_scene() {
+  Scene s = shard_scene();
+  for (int t = 0; t < 2; ++t) {
+    Texture tex;
+    tex.name = "tex" + std::to_string(t);
+    tex.source = "textures/tex" + std::to_string(t) + ".png";
+    tex.image = Image(4, 4);
+    for (std::size_t k = 0; k < tex.image.data.size(); ++k) tex.image.data[k] = 0.01f * static_cast<float>(k + 7u * t);
+    tex.data = t == 1;
+    s.textures.push_back(std::move(tex));
+  }
+  Material& m = s.materials[0];
+  m.kd_texture = 0, m.ks_texture = 1, m.gloss_texture = 1, m.normal_texture = 1;
+  m.base_color_texture = 0, m.metallic_roughness_texture = 1;
+  m.emission = Rgb{0.1, 0.2, 0.3};
+  s.disks.push_back({{1, 0.1, 1}, {0, 1, 0}, 0.3, 1});
+  MeshShape mesh;
+  mesh.source = "meshes/tri.obj";
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  mesh.uvs = {{0, 0}, {1, 0}, {0, 1}};
+  mesh.indices = {0, 1, 2};
+  mesh.material = 1;
+  s.meshes.push_back(mesh);
+  s.lights.push_back(DirectionalLight{{0, 1, 0}, Rgb{1, 1, 1}, false});
+  s.lights.push_back(PointLight{{1, 2, 3}, Rgb{4, 5, 6}});
+  s.lights.push_back(SpotLight{{1, 2, 3}, {0, -1, 0}, Rgb{7, 8, 9}, 0.9, 0.8});
+  s.lights.push_back(HemisphereLight{{0, 1, 0}, Rgb{0.5, 0.6, 0.7}, Rgb{0.1, 0.1, 0.1}});
+  s.environment.kind = Environment::Kind::image;
+  s.environment.latlong = Image(8, 4);
+  for (std::size_t k = 0; k < s.environment.latlong.data.size(); ++k) s.environment.latlong.data[k] = 0.5f + 0.001f * static_cast<float>(k);
+  s.environment.source = "env/sky.exr";
+  return s;
+}
+
+// The members of every struct the fingerprint walks, named by structured bindings as in shard_file.cpp: a
+// member added to any of them stops this test compiling until a change of it is added to the list below
+// (and shard_file.cpp stops compiling until it is hashed there).
+[[maybe_unused]] void every_member_is_in_the_list(Scene& s, Material& m, Texture& t, MeshShape& mesh, Environment& e,
+                                                  SkyModel& sky, Camera& c, RenderSettings& r) {
+  [[maybe_unused]] auto& [s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10] = s;
+  [[maybe_unused]] auto& [m0, m1, m2, m3, m4, m5, m6, m7, m8, m9, m10, m11, m12] = m;
+  [[maybe_unused]] auto& [t0, t1, t2, t3] = t;
+  [[maybe_unused]] auto& [h0, h1, h2, h3, h4, h5] = mesh;
+  [[maybe_unused]] auto& [e0, e1, e2, e3, e4, e5, e6] = e;
+  [[maybe_unused]] auto& [k0, k1, k2, k3, k4, k5] = sky;
+  [[maybe_unused]] auto& [c0, c1, c2, c3, c4, c5] = c;
+  [[maybe_unused]] auto& [r0, r1, r2, r3, r4] = r;
+  static_assert(std::variant_size_v<SceneLight> == 5, "a new light type: add changes of its members below");
+}
+
+// issue 40, finding 2: every member of every struct in the Scene that changes the image changes the
+// fingerprint, each alone (the old hand-written list left out base_color_texture and
+// metallic_roughness_texture), and every one of these changes gives a fingerprint of its own.
+TEST(SceneFingerprint, EveryMemberThatChangesTheImageChangesIt) {
+  const Scene base = fingerprint_scene();
+  const std::string h0 = scene_fingerprint(base);
+  EXPECT_EQ(h0.size(), 16u);
+  const std::vector<std::pair<std::string, std::function<void(Scene&)>>> changes{
+      {"camera.position", [](Scene& s) { s.camera.position.x += 0.5; }},
+      {"camera.look_at", [](Scene& s) { s.camera.look_at.y += 0.5; }},
+      {"camera.up", [](Scene& s) { s.camera.up = {0, 1, 1e-9}; }},
+      {"camera.vfov_deg", [](Scene& s) { s.camera.vfov_deg = 41; }},
+      {"camera.width", [](Scene& s) { s.camera.width = 41; }},
+      {"camera.height", [](Scene& s) { s.camera.height = 25; }},
+      {"texture.name", [](Scene& s) { s.textures[0].name = "other"; }},
+      {"texture.image texel", [](Scene& s) { s.textures[0].image.data[5] = std::nextafter(s.textures[0].image.data[5], 1.0f); }},
+      {"texture.image shape", [](Scene& s) { s.textures[0].image.width = 8, s.textures[0].image.height = 2; }},
+      {"texture.image last texel", [](Scene& s) { s.textures[1].image.data.back() += 1.0f; }},
+      {"texture.data", [](Scene& s) { s.textures[0].data = true; }},
+      {"texture order", [](Scene& s) { std::swap(s.textures[0], s.textures[1]); }},
+      {"material.name", [](Scene& s) { s.materials[0].name += "x"; }},
+      {"material.model", [](Scene& s) { s.materials[0].model = "phong"; }},
+      {"material.params value", [](Scene& s) { s.materials[0].params[0].second = "0.51"; }},
+      {"material.params name", [](Scene& s) { s.materials[0].params[0].first = "ks"; }},
+      {"material.params added", [](Scene& s) { s.materials[1].params.push_back({"n", "30"}); }},
+      {"material.kd_texture", [](Scene& s) { s.materials[0].kd_texture = -1; }},
+      {"material.ks_texture", [](Scene& s) { s.materials[0].ks_texture = -1; }},
+      {"material.gloss_texture", [](Scene& s) { s.materials[0].gloss_texture = -1; }},
+      {"material.normal_texture", [](Scene& s) { s.materials[0].normal_texture = -1; }},
+      {"material.base_color_texture", [](Scene& s) { s.materials[0].base_color_texture = -1; }},
+      {"material.metallic_roughness_texture", [](Scene& s) { s.materials[0].metallic_roughness_texture = -1; }},
+      {"material.base_color_texture index", [](Scene& s) { s.materials[0].base_color_texture = 1; }},
+      {"material.gloss_encoding.n_black", [](Scene& s) { s.materials[0].gloss_encoding.n_black = 3; }},
+      {"material.gloss_encoding.n_white", [](Scene& s) { s.materials[0].gloss_encoding.n_white = 4096; }},
+      {"material.uv_scale.x", [](Scene& s) { s.materials[0].uv_scale.x = 2; }},
+      {"material.uv_scale.y", [](Scene& s) { s.materials[0].uv_scale.y = 2; }},
+      {"material.emission", [](Scene& s) { s.materials[0].emission.b = 0.4; }},
+      {"sphere.center", [](Scene& s) { s.spheres[0].center.z = 0.1; }},
+      {"sphere.radius", [](Scene& s) { s.spheres[0].radius = 0.71; }},
+      {"sphere.material", [](Scene& s) { s.spheres[0].material = 0; }},
+      {"quad.corner", [](Scene& s) { s.quads[0].corner.y = 0.01; }},
+      {"quad.u", [](Scene& s) { s.quads[0].u.z = 0.01; }},
+      {"quad.v", [](Scene& s) { s.quads[0].v.x = 0.01; }},
+      {"quad.material", [](Scene& s) { s.quads[0].material = 1; }},
+      {"disk.center", [](Scene& s) { s.disks[0].center.x = 1.5; }},
+      {"disk.normal", [](Scene& s) { s.disks[0].normal = {0, 0, 1}; }},
+      {"disk.radius", [](Scene& s) { s.disks[0].radius = 0.4; }},
+      {"disk.material", [](Scene& s) { s.disks[0].material = 0; }},
+      {"shape added", [](Scene& s) { s.spheres.push_back({{0, 0, 0}, 1, 0}); }},
+      {"mesh.positions", [](Scene& s) { s.meshes[0].positions[2].y = 1.5; }},
+      {"mesh.normals", [](Scene& s) { s.meshes[0].normals[1] = {0, 1, 0}; }},
+      {"mesh.normals removed", [](Scene& s) { s.meshes[0].normals.clear(); }},
+      {"mesh.uvs", [](Scene& s) { s.meshes[0].uvs[1].x = 0.5; }},
+      {"mesh.indices", [](Scene& s) { s.meshes[0].indices = {0, 2, 1}; }},
+      {"mesh.material", [](Scene& s) { s.meshes[0].material = 0; }},
+      {"sphere light.center", [](Scene& s) { std::get<SphereLight>(s.lights[0]).center.x = 2.5; }},
+      {"sphere light.radius", [](Scene& s) { std::get<SphereLight>(s.lights[0]).radius = 0.6; }},
+      {"sphere light.radiance", [](Scene& s) { std::get<SphereLight>(s.lights[0]).radiance.g = 21; }},
+      {"directional.to_light", [](Scene& s) { std::get<DirectionalLight>(s.lights[1]).to_light = {0, 0, 1}; }},
+      {"directional.irradiance", [](Scene& s) { std::get<DirectionalLight>(s.lights[1]).irradiance.r = 2; }},
+      {"directional.game_sh", [](Scene& s) { std::get<DirectionalLight>(s.lights[1]).game_sh = true; }},
+      {"point.position", [](Scene& s) { std::get<PointLight>(s.lights[2]).position.z = 4; }},
+      {"point.intensity", [](Scene& s) { std::get<PointLight>(s.lights[2]).intensity.b = 7; }},
+      {"spot.position", [](Scene& s) { std::get<SpotLight>(s.lights[3]).position.x = 0; }},
+      {"spot.axis", [](Scene& s) { std::get<SpotLight>(s.lights[3]).axis = {0, 0, -1}; }},
+      {"spot.intensity", [](Scene& s) { std::get<SpotLight>(s.lights[3]).intensity.r = 1; }},
+      {"spot.cos_inner", [](Scene& s) { std::get<SpotLight>(s.lights[3]).cos_inner = 0.95; }},
+      {"spot.cos_outer", [](Scene& s) { std::get<SpotLight>(s.lights[3]).cos_outer = 0.7; }},
+      {"hemisphere.up", [](Scene& s) { std::get<HemisphereLight>(s.lights[4]).up = {0, 0, 1}; }},
+      {"hemisphere.sky", [](Scene& s) { std::get<HemisphereLight>(s.lights[4]).sky.r = 0.55; }},
+      {"hemisphere.ground", [](Scene& s) { std::get<HemisphereLight>(s.lights[4]).ground.g = 0.2; }},
+      {"light type, same numbers", [](Scene& s) { s.lights[2] = SphereLight{{1, 2, 3}, 0.0, Rgb{4, 5, 6}}; }},
+      {"light order", [](Scene& s) { std::swap(s.lights[1], s.lights[2]); }},
+      {"environment.kind", [](Scene& s) { s.environment.kind = Environment::Kind::uniform; }},
+      {"environment.uniform", [](Scene& s) { s.environment.uniform.r = 0.31; }},
+      {"environment.latlong texel", [](Scene& s) { s.environment.latlong.data[40] += 1e-6f; }},
+      {"environment.latlong size", [](Scene& s) { s.environment.latlong = Image(4, 2); }},
+      {"environment.rotation_deg", [](Scene& s) { s.environment.rotation_deg = 90; }},
+      {"environment.scale", [](Scene& s) { s.environment.scale = 2; }},
+      {"sky.sun_direction", [](Scene& s) { s.environment.sky.sun_direction = {0, 1, 0}; }},
+      {"sky.sun_angular_radius_deg", [](Scene& s) { s.environment.sky.sun_angular_radius_deg = 0.5; }},
+      {"sky.sun_irradiance", [](Scene& s) { s.environment.sky.sun_irradiance.r = 4; }},
+      {"sky.zenith", [](Scene& s) { s.environment.sky.zenith.g = 0.3; }},
+      {"sky.horizon", [](Scene& s) { s.environment.sky.horizon.b = 0.8; }},
+      {"sky.ground", [](Scene& s) { s.environment.sky.ground.r = 0.2; }},
+      {"settings.rr_depth", [](Scene& s) { s.settings.rr_depth = 0; }},
+  };
+  std::map<std::string, std::string> seen{{h0, "the scene itself"}};
+  for (const auto& [what, change] : changes) {
+    Scene s = base;
+    change(s);
+    const std::string h = scene_fingerprint(s);
+    EXPECT_NE(h, h0) << what << " leaves the fingerprint as it was";
+    const auto [it, inserted] = seen.emplace(h, what);
+    EXPECT_TRUE(inserted || it->second == what) << what << " gives the fingerprint of " << it->second;
+  }
+}
+
+// What does not change the image leaves the fingerprint alone: paths (a scene moved to another folder or
+// machine), the BRDF pointer (rebuilt from the parameters on every load), the thread count, and spp,
+// max_depth and seed, which are fields of their own in ShardInfo (an option may override the scene's).
+TEST(SceneFingerprint, PathsThreadsAndTheShardInfoFieldsLeaveItAlone) {
+  const Scene base = fingerprint_scene();
+  const std::string h0 = scene_fingerprint(base);
+  EXPECT_EQ(scene_fingerprint(base), h0);  // the same on every call: no pointer or address in it
+  Scene s = base;
+  s.source = "/elsewhere/scene.json";
+  s.textures[0].source = "/elsewhere/tex0.png";
+  s.meshes[0].source = "/elsewhere/tri.obj";
+  s.environment.source = "/elsewhere/sky.exr";
+  s.materials[0].brdf = nullptr;
+  s.settings.threads = 7;
+  s.settings.spp = 99;
+  s.settings.max_depth = 2;
+  s.settings.seed = 123;
+  EXPECT_EQ(scene_fingerprint(s), h0);
+  // A copy made by another route (the image data in a fresh buffer) hashes the same.
+  Scene copy = base;
+  copy.environment.latlong = Image(8, 4);
+  std::copy(base.environment.latlong.data.begin(), base.environment.latlong.data.end(), copy.environment.latlong.data.begin());
+  EXPECT_EQ(scene_fingerprint(copy), h0);
+  // Pinned: the same value on every machine and run (bit patterns, widened integers, no std::hash); a change to
+  // the walk must change scene_fingerprint_version in shard_file.cpp, and this value with it.
+  EXPECT_EQ(scene_fingerprint(shard_scene()), "57c3e0c7a582f456");
 }
 
 }  // namespace
