@@ -6,6 +6,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <tuple>
 #include <vector>
 
 #include "shadelab/core/constants.h"
@@ -59,6 +63,7 @@ Image downsample_latlong(const Image& ll) {
 Rgb irradiance_brute_force(const CubeMap& radiance, const Vec3& n) {
   const CubeTexelTable& t = CubeTexelTable::get(radiance.size);
   Rgb sum;
+  double weight = 0.0;
   const auto size = static_cast<std::size_t>(radiance.size);
   for (std::size_t k = 0; k < t.direction.size(); ++k) {
     const double c = dot(n, t.direction[k]);
@@ -66,22 +71,27 @@ Rgb irradiance_brute_force(const CubeMap& radiance, const Vec3& n) {
     const std::size_t face = k / (size * size);
     const std::size_t p = k % (size * size);
     sum += radiance.faces[face].at(static_cast<int>(p % size), static_cast<int>(p / size)) * (c * t.solid_angle[k]);
+    weight += c * t.solid_angle[k];
   }
-  return sum;
+  return weight > 0.0 ? sum / weight * pi : Rgb{};
 }
 
 Rgb irradiance_brute_force(const Image& latlong, const Vec3& n) {
   const int w = latlong.width;
   const int h = latlong.height;
   Rgb sum;
+  double weight = 0.0;
   for (int y = 0; y < h; ++y) {
     const double d_omega = latlong_texel_solid_angle(y, w, h);
     for (int x = 0; x < w; ++x) {
       const double c = dot(n, latlong_direction((x + 0.5) / w, (y + 0.5) / h));
-      if (c > 0.0) sum += latlong.at(x, y) * (c * d_omega);
+      if (c > 0.0) {
+        sum += latlong.at(x, y) * (c * d_omega);
+        weight += c * d_omega;
+      }
     }
   }
-  return sum;
+  return weight > 0.0 ? sum / weight * pi : Rgb{};
 }
 
 namespace {
@@ -90,63 +100,72 @@ using namespace simd;
 
 // Emitters on lines. Entry k of line l is the prefix sum over the line's first k texels of the moment
 // vectors L_c dOmega w, 9 floats (x, y, z for R, then G, then B), summed in double and stored in float.
+// The unit lines (channels = 1) hold dOmega w alone, 3 floats: L = 1 on the same texels, whose sums are the
+// cosine weights W(n) = sum max(0, n.w) dOmega.
 struct Lines {
   bool rings = false;   // lat-long latitude rings (wrapping runs) or cube face rows (prefix / suffix runs)
+  int channels = 3;     // 3: R, G, B; 1: the unit lines
   int count = 0;        // lines
   int length = 0;       // texels per line
   int face_size = 0;    // cube rows: N (line l is row l % N of face l / N)
+  int height = 0;       // rings: the lat-long's height
   std::vector<float> param;   // cube rows: tc of the row; rings: cot(theta) of the ring
-  FloatBuffer prefix;  // count * (length + 1) * 9, plus 4 floats of padding for 4-wide loads
+  FloatBuffer prefix;  // count * (length + 1) * 3 * channels, plus 4 floats of padding for 4-wide loads
   // Added to every normal's sum: sum over the lines of K_l (below), 9 values as a prefix entry.
   std::array<double, 9> constant{};
   // M = sum of L dOmega d over every texel of the map (9 values as a prefix entry), in double.
   std::array<double, 9> first_moment{};
 
+  std::size_t stride() const { return 3 * static_cast<std::size_t>(channels); }
   const float* entry(int line, int k) const {
-    return prefix.data() + (static_cast<std::size_t>(line) * static_cast<std::size_t>(length + 1) + static_cast<std::size_t>(k)) * 9;
+    return prefix.data() + (static_cast<std::size_t>(line) * static_cast<std::size_t>(length + 1) + static_cast<std::size_t>(k)) * stride();
   }
 };
 
-void store_prefix(Lines& lines, int line, const std::vector<double>& moments /* length * 9 */) {
-  float* out = lines.prefix.data() + static_cast<std::size_t>(line) * static_cast<std::size_t>(lines.length + 1) * 9;
+void store_prefix(Lines& lines, int line, const std::vector<double>& moments /* length * stride */) {
+  const std::size_t s = lines.stride();
+  float* out = lines.prefix.data() + static_cast<std::size_t>(line) * static_cast<std::size_t>(lines.length + 1) * s;
   double acc[9] = {};
-  for (int i = 0; i < 9; ++i) out[i] = 0.0f;
+  for (std::size_t i = 0; i < s; ++i) out[i] = 0.0f;
   for (int k = 0; k < lines.length; ++k) {
-    for (int i = 0; i < 9; ++i) {
-      acc[i] += moments[static_cast<std::size_t>(k) * 9 + static_cast<std::size_t>(i)];
-      out[static_cast<std::size_t>(k + 1) * 9 + static_cast<std::size_t>(i)] = static_cast<float>(acc[i]);
+    for (std::size_t i = 0; i < s; ++i) {
+      acc[i] += moments[static_cast<std::size_t>(k) * s + i];
+      out[static_cast<std::size_t>(k + 1) * s + i] = static_cast<float>(acc[i]);
     }
   }
 }
 
-Lines cube_lines(const CubeMap& cube) {
-  const int n = cube.size;
+// The lines of a cube (n = cube->size), or with cube == nullptr the unit lines of an n x n cube.
+Lines cube_lines(const CubeMap* cube, int n) {
   const std::vector<double>& solid_angle = cube_face_solid_angles(n);
   Lines lines;
+  lines.channels = cube != nullptr ? 3 : 1;
   lines.count = 6 * n;
   lines.length = n;
   lines.face_size = n;
+  const std::size_t s = lines.stride();
   lines.param.resize(static_cast<std::size_t>(lines.count));
-  lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(n + 1) * 9 + 4, 0.0f);
+  lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(n + 1) * s + 4, 0.0f);
   tbb::parallel_for(0, lines.count, [&](int l) {
     const int f = l / n;
     const int y = l % n;
     lines.param[static_cast<std::size_t>(l)] = static_cast<float>((2.0 * y + 1.0) / n - 1.0);
-    std::vector<double> m(static_cast<std::size_t>(n) * 9);
+    std::vector<double> m(static_cast<std::size_t>(n) * s);
     for (int x = 0; x < n; ++x) {
       const Vec3 d = texel_direction(f, x, y, n);
-      const Rgb l_omega = cube.texel(f, x, y) * solid_angle[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)];
-      for (int c = 0; c < 3; ++c) {
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
+      const Rgb l_omega = (cube != nullptr ? cube->texel(f, x, y) : Rgb::gray(1.0)) *
+                          solid_angle[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)];
+      for (int c = 0; c < lines.channels; ++c) {
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
       }
     }
     store_prefix(lines, l, m);
   });
   for (int l = 0; l < lines.count; ++l) {
     const float* t = lines.entry(l, lines.length);
-    for (std::size_t i = 0; i < 9; ++i) lines.first_moment[i] += static_cast<double>(t[i]);
+    for (std::size_t i = 0; i < s; ++i) lines.first_moment[i] += static_cast<double>(t[i]);
   }
   return lines;
 }
@@ -157,17 +176,19 @@ Lines cube_lines(const CubeMap& cube) {
 //   sum_{x in run} m_y[x] + sum_{x not in run} m_y'[x + w/2] = K + sum_{x in run} (m_y[x] - m_y'[x + w/2])
 // with K = sum_x m_y'[x] (the whole of ring y'), and m_y[x] - m_y'[x + w/2] = (L_y[x] + L_y'[x + w/2]) dOmega
 // d(x, y) (d' = -d): a sum, no cancellation. The same texels as two lines, in half the line steps; the run is
-// ring y's. The K of all lines are summed once (Lines::constant).
-Lines ring_lines(const Image& ll) {
-  const int w = ll.width;
-  const int h = ll.height;
+// ring y's. The K of all lines are summed once (Lines::constant). With ll == nullptr: the unit lines of a
+// w x h lat-long.
+Lines ring_lines(const Image* ll, int w, int h) {
   const bool paired = w % 2 == 0 && h % 2 == 0;
   Lines lines;
   lines.rings = true;
+  lines.channels = ll != nullptr ? 3 : 1;
   lines.count = paired ? h / 2 : h;
   lines.length = w;
+  lines.height = h;
+  const std::size_t s = lines.stride();
   lines.param.resize(static_cast<std::size_t>(lines.count));
-  lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(w + 1) * 9 + 4, 0.0f);
+  lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(w + 1) * s + 4, 0.0f);
   std::vector<double> cos_phi(static_cast<std::size_t>(w)), sin_phi(static_cast<std::size_t>(w));
   for (int x = 0; x < w; ++x) {
     const double phi = two_pi * ((x + 0.5) / w - 0.5);  // latlong.h: phi = 2 pi (u - 0.5)
@@ -183,40 +204,40 @@ Lines ring_lines(const Image& ll) {
     const double d_omega = latlong_texel_solid_angle(y, w, h);
     for (int x = 0; x < w; ++x) {
       const Vec3 d{st * cos_phi[static_cast<std::size_t>(x)], ct, st * sin_phi[static_cast<std::size_t>(x)]};
-      const Rgb l_omega = ll.at(x, y) * d_omega;
-      for (int c = 0; c < 3; ++c) {
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
+      const Rgb l_omega = (ll != nullptr ? ll->at(x, y) : Rgb::gray(1.0)) * d_omega;
+      for (int c = 0; c < lines.channels; ++c) {
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
       }
     }
   };
   const auto total = [&](const std::vector<double>& m, std::array<double, 9>& t) {
     for (int x = 0; x < w; ++x)
-      for (std::size_t i = 0; i < 9; ++i) t[i] += m[static_cast<std::size_t>(x) * 9 + i];
+      for (std::size_t i = 0; i < s; ++i) t[i] += m[static_cast<std::size_t>(x) * s + i];
   };
   tbb::parallel_for(0, lines.count, [&](int y) {
     const double theta = pi * (y + 0.5) / h;
     lines.param[static_cast<std::size_t>(y)] = static_cast<float>(std::cos(theta) / std::sin(theta));
-    std::vector<double> m(static_cast<std::size_t>(w) * 9);
+    std::vector<double> m(static_cast<std::size_t>(w) * s);
     ring_moments(y, m);
     std::array<double, 9>& mt = m_line[static_cast<std::size_t>(y)];
     total(m, mt);
     if (paired) {
-      std::vector<double> partner(static_cast<std::size_t>(w) * 9);
+      std::vector<double> partner(static_cast<std::size_t>(w) * s);
       ring_moments(h - 1 - y, partner);
       std::array<double, 9>& k = k_line[static_cast<std::size_t>(y)];
       total(partner, k);
-      for (std::size_t i = 0; i < 9; ++i) mt[i] += k[i];
+      for (std::size_t i = 0; i < s; ++i) mt[i] += k[i];
       for (int x = 0; x < w; ++x) {
         const auto xs = static_cast<std::size_t>((x + w / 2) % w);
-        for (std::size_t i = 0; i < 9; ++i) m[static_cast<std::size_t>(x) * 9 + i] -= partner[xs * 9 + i];
+        for (std::size_t i = 0; i < s; ++i) m[static_cast<std::size_t>(x) * s + i] -= partner[xs * s + i];
       }
     }
     store_prefix(lines, y, m);
   });
   for (std::size_t l = 0; l < k_line.size(); ++l) {
-    for (std::size_t i = 0; i < 9; ++i) {
+    for (std::size_t i = 0; i < s; ++i) {
       lines.constant[i] += k_line[l][i];
       lines.first_moment[i] += m_line[l][i];
     }
@@ -316,10 +337,13 @@ SHADELAB_INLINE void runs8(const Lines& lines, const NormalBlock& b, int line, i
   }
 }
 
-// E(n) (radiometric) of every normal of the block, written to out[0 .. count).
+// The discrete sum of every normal of the block, sum L max(0, n.w) dOmega per channel (C = lines.channels;
+// the unit lines give W(n) in channel 0), written to out[0 .. count).
+template <int C>
 SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& b, Rgb* out) {
   const auto p = static_cast<std::size_t>(b.padded);
-  std::vector<f4> acc(3 * p, f4{});
+  constexpr auto cs = static_cast<std::size_t>(C);
+  std::vector<f4> acc(cs * p, f4{});
   // Runs of up to two lines at a time: the accumulators are read and written once per two lines, and each
   // line's terms are added in line order, so the sums are the same as one line at a time, bit for bit.
   std::vector<int> lo(2 * p), hi(2 * p);
@@ -331,7 +355,8 @@ SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& 
       for (int i = 0; i < b.padded; i += 8) runs8(lines, b, line + j, i, lo.data() + o + i, hi.data() + o + i, wrap.data() + o + i);
     }
     // Line l's term of normal i for channel offset c (0, 3, 6): n . (P[hi] - P[lo] + wrap total). Lane 3 of
-    // each load reads the next channel's x; n's lane 3 is 0, so it adds nothing.
+    // each load reads the next channel's (or entry's) x; n's lane 3 is 0, so it adds nothing. Each channel
+    // is its own sum, so channel 0 of the unit lines is computed exactly as channel 0 of RGB lines.
     const auto term = [&](int l, std::size_t o, std::size_t i, const f4& n, int c) SHADELAB_INLINE_LAMBDA {
       const float* e0 = lines.entry(l, lo[o + i]) + c;
       const float* e1 = lines.entry(l, hi[o + i]) + c;
@@ -339,22 +364,28 @@ SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& 
     };
     for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {
       const f4 n = load4(b.n4.data() + 4 * i);
-      f4 ar = acc[3 * i], ag = acc[3 * i + 1], ab = acc[3 * i + 2];
-      for (int j = 0; j < pair; ++j) {
-        const auto o = static_cast<std::size_t>(j) * p;
-        ar += term(line + j, o, i, n, 0);
-        ag += term(line + j, o, i, n, 3);
-        ab += term(line + j, o, i, n, 6);
+      if constexpr (C == 3) {
+        f4 ar = acc[3 * i], ag = acc[3 * i + 1], ab = acc[3 * i + 2];
+        for (int j = 0; j < pair; ++j) {
+          const auto o = static_cast<std::size_t>(j) * p;
+          ar += term(line + j, o, i, n, 0);
+          ag += term(line + j, o, i, n, 3);
+          ab += term(line + j, o, i, n, 6);
+        }
+        acc[3 * i] = ar;
+        acc[3 * i + 1] = ag;
+        acc[3 * i + 2] = ab;
+      } else {
+        f4 a = acc[i];
+        for (int j = 0; j < pair; ++j) a += term(line + j, static_cast<std::size_t>(j) * p, i, n, 0);
+        acc[i] = a;
       }
-      acc[3 * i] = ar;
-      acc[3 * i + 1] = ag;
-      acc[3 * i + 2] = ab;
     }
   }
   for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {
     Rgb e;
-    for (int c = 0; c < 3; ++c) {
-      const f4 a = acc[3 * i + static_cast<std::size_t>(c)];
+    for (int c = 0; c < C; ++c) {
+      const f4 a = acc[cs * i + static_cast<std::size_t>(c)];
       e[c] = static_cast<double>(a[0]) + static_cast<double>(a[1]) + static_cast<double>(a[2]);
       const auto k = static_cast<std::size_t>(3 * c);
       e[c] += static_cast<double>(b.n4[4 * i]) * lines.constant[k] + static_cast<double>(b.n4[4 * i + 1]) * lines.constant[k + 1] +
@@ -365,9 +396,13 @@ SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& 
 }
 
 SHADELAB_TARGET_AVX2 void convolve_block_avx2(const Lines& lines, const NormalBlock& b, Rgb* out) {
-  convolve_block_impl(lines, b, out);
+  convolve_block_impl<3>(lines, b, out);
 }
-void convolve_block_base(const Lines& lines, const NormalBlock& b, Rgb* out) { convolve_block_impl(lines, b, out); }
+void convolve_block_base(const Lines& lines, const NormalBlock& b, Rgb* out) { convolve_block_impl<3>(lines, b, out); }
+SHADELAB_TARGET_AVX2 void convolve_block_unit_avx2(const Lines& lines, const NormalBlock& b, Rgb* out) {
+  convolve_block_impl<1>(lines, b, out);
+}
+void convolve_block_unit_base(const Lines& lines, const NormalBlock& b, Rgb* out) { convolve_block_impl<1>(lines, b, out); }
 
 // E(n) for every normal, in blocks run in parallel; progress between groups of blocks.
 std::vector<Rgb> convolve(const Lines& lines, const std::vector<Vec3>& normals, const ProgressFn& progress) {
@@ -385,10 +420,10 @@ std::vector<Rgb> convolve(const Lines& lines, const std::vector<Vec3>& normals, 
         const int first = k * block;
         const int n = std::min(block, count - first);
         const NormalBlock b = make_block(normals.data() + first, n, lines.rings);
-        if (avx) {
-          convolve_block_avx2(lines, b, out.data() + first);
+        if (lines.channels == 1) {
+          (avx ? convolve_block_unit_avx2 : convolve_block_unit_base)(lines, b, out.data() + first);
         } else {
-          convolve_block_base(lines, b, out.data() + first);
+          (avx ? convolve_block_avx2 : convolve_block_base)(lines, b, out.data() + first);
         }
       }
     });
@@ -407,11 +442,14 @@ std::vector<Rgb> convolve(const Lines& lines, const std::vector<Vec3>& normals, 
 std::vector<Rgb> convolve_pairs(const Lines& lines, const std::vector<Vec3>& normals, const std::vector<int>& antipode,
                                 const ProgressFn& progress) {
   double m[3][3] = {};  // m[c] = M of channel c (x, y, z)
-  for (std::size_t c = 0; c < 3; ++c)
+  const int channels = lines.channels;
+  for (std::size_t c = 0; c < static_cast<std::size_t>(channels); ++c)
     for (std::size_t k = 0; k < 3; ++k) m[c][k] = lines.first_moment[3 * c + k];
   const auto n_dot_m = [&](const Vec3& n, int c) { return n.x * m[c][0] + n.y * m[c][1] + n.z * m[c][2]; };
   const auto dark = [&](const Vec3& n) {
-    return n_dot_m(n, 0) <= 0.0 && n_dot_m(n, 1) <= 0.0 && n_dot_m(n, 2) <= 0.0;
+    for (int c = 0; c < channels; ++c)
+      if (n_dot_m(n, c) > 0.0) return false;
+    return true;
   };
   std::vector<int> from(normals.size(), -1);  // from[j] = i: E(j) derived from E(i)
   std::vector<Vec3> direct;
@@ -442,7 +480,7 @@ std::vector<Rgb> convolve_pairs(const Lines& lines, const std::vector<Vec3>& nor
   for (std::size_t j = 0; j < normals.size(); ++j) {
     if (from[j] < 0) continue;
     const auto i = static_cast<std::size_t>(from[j]);
-    for (int c = 0; c < 3; ++c) out[j][c] = out[i][c] - n_dot_m(normals[i], c);  // n_i.M_c <= 0
+    for (int c = 0; c < channels; ++c) out[j][c] = out[i][c] - n_dot_m(normals[i], c);  // n_i.M_c <= 0
   }
   return out;
 }
@@ -494,67 +532,105 @@ std::vector<Vec3> latlong_normals(int width, int height) {
   return n;
 }
 
-CubeMap to_cube(const std::vector<Rgb>& e, int size, double scale) {
+// E(n) (radiometric) or E(n) / pi (game) from the discrete sums S(n) and the cosine weights W(n):
+// pi S / W or S / W. S / W is one division, so a constant L, whose S(n) is L W(n) (below), gives L exactly.
+Rgb normalise(const Rgb& s, double w, RadianceUnits units) {
+  if (!(w > 0.0)) return Rgb{};  // no texel in n's hemisphere: S(n) = 0 too
+  const Rgb e = s / w;
+  return units == RadianceUnits::game ? e : e * pi;
+}
+
+CubeMap to_cube(const std::vector<Rgb>& s, const std::vector<double>& w, int size, RadianceUnits units) {
   CubeMap out(size);
   std::size_t k = 0;
   for (int f = 0; f < 6; ++f)
     for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) out.set(f, x, y, e[k++] * scale);
+      for (int x = 0; x < size; ++x, ++k) out.set(f, x, y, normalise(s[k], w[k], units));
   return out;
 }
 
-Image to_latlong(const std::vector<Rgb>& e, int width, int height, double scale) {
+Image to_latlong(const std::vector<Rgb>& s, const std::vector<double>& w, int width, int height, RadianceUnits units) {
   Image out(width, height);
   std::size_t k = 0;
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) out.set(x, y, e[k++] * scale);
+    for (int x = 0; x < width; ++x, ++k) out.set(x, y, normalise(s[k], w[k], units));
   return out;
 }
 
 Lines prepared_lines(const CubeMap& radiance, int max_size) {
-  if (max_size <= 0 || radiance.size <= max_size) return cube_lines(radiance);
+  if (max_size <= 0 || radiance.size <= max_size) return cube_lines(&radiance, radiance.size);
   CubeMap in = radiance;
   while (in.size > max_size && in.size % 2 == 0) in = downsample_cube(in);
-  return cube_lines(in);
+  return cube_lines(&in, in.size);
 }
 
 Lines prepared_lines(const Image& latlong, int max_size) {
-  if (max_size <= 0 || latlong.width <= 4 * max_size) return ring_lines(latlong);
+  if (max_size <= 0 || latlong.width <= 4 * max_size) return ring_lines(&latlong, latlong.width, latlong.height);
   Image in = latlong;
   while (in.width > 4 * max_size && in.width % 2 == 0 && in.height % 2 == 0) in = downsample_latlong(in);
-  return ring_lines(in);
+  return ring_lines(&in, in.width, in.height);
 }
 
-double unit_scale(RadianceUnits units) { return units == RadianceUnits::game ? inv_pi : 1.0; }  // game: E / pi
+// W(n) = sum max(0, n.w) dOmega over the texels of `lines` (after any halving), for every output normal: the
+// sums of the unit lines (L = 1 on the same texels), with the arithmetic of one channel of the radiance
+// lines. For a constant L every step of S(n) is L times the same step of W(n) (a power of two such as 0.5
+// scales float rounding exactly, so S = 0.5 W bit for bit; other constants agree to float rounding). W
+// depends on the texel geometry only, never on the values: cached per (input layout and size, output
+// layout and size). The unit lines are 3 floats per entry against 9, so W costs about a third of S, and
+// nothing on a cache hit.
+std::shared_ptr<const std::vector<double>> cosine_weights(const Lines& lines, bool cube_out, int out_size,
+                                                          const std::vector<Vec3>& normals, const std::vector<int>& antipode) {
+  using Key = std::tuple<bool, int, int, bool, int>;
+  static std::mutex mutex;
+  static std::map<Key, std::shared_ptr<const std::vector<double>>> cache;
+  const Key key{lines.rings, lines.rings ? lines.length : lines.face_size, lines.height, cube_out, out_size};
+  {
+    const std::lock_guard lock(mutex);
+    if (const auto it = cache.find(key); it != cache.end()) return it->second;
+  }
+  const Lines unit = lines.rings ? ring_lines(nullptr, lines.length, lines.height) : cube_lines(nullptr, lines.face_size);
+  const std::vector<Rgb> sums = convolve_pairs(unit, normals, antipode, {});
+  auto w = std::make_shared<std::vector<double>>(sums.size());
+  for (std::size_t i = 0; i < sums.size(); ++i) (*w)[i] = sums[i].r;
+  const std::lock_guard lock(mutex);
+  if (cache.size() >= 32) cache.clear();  // a bound; a miss only costs the unit convolution again
+  return cache.emplace(key, std::move(w)).first->second;
+}
 
 }  // namespace
 
 CubeMap irradiance_cube(const CubeMap& radiance, int size, RadianceUnits units, const ConvolveOptions& options) {
   const Lines lines = prepared_lines(radiance, options.max_input_size);
   const std::vector<Vec3> normals = cube_normals(size);
-  return to_cube(convolve_pairs(lines, normals, cube_antipodes(normals, size), options.progress), size, unit_scale(units));
+  const std::vector<int> antipode = cube_antipodes(normals, size);
+  const std::vector<Rgb> s = convolve_pairs(lines, normals, antipode, options.progress);
+  return to_cube(s, *cosine_weights(lines, true, size, normals, antipode), size, units);
 }
 
 CubeMap irradiance_cube(const Image& latlong, int size, RadianceUnits units, const ConvolveOptions& options) {
   const Lines lines = prepared_lines(latlong, options.max_input_size);
   const std::vector<Vec3> normals = cube_normals(size);
-  return to_cube(convolve_pairs(lines, normals, cube_antipodes(normals, size), options.progress), size, unit_scale(units));
+  const std::vector<int> antipode = cube_antipodes(normals, size);
+  const std::vector<Rgb> s = convolve_pairs(lines, normals, antipode, options.progress);
+  return to_cube(s, *cosine_weights(lines, true, size, normals, antipode), size, units);
 }
 
 Image irradiance_latlong(const CubeMap& radiance, int width, RadianceUnits units, const ConvolveOptions& options) {
   const int height = std::max(1, width / 2);
   const Lines lines = prepared_lines(radiance, options.max_input_size);
   const std::vector<Vec3> normals = latlong_normals(width, height);
-  return to_latlong(convolve_pairs(lines, normals, latlong_antipodes(normals, width, height), options.progress), width,
-                    height, unit_scale(units));
+  const std::vector<int> antipode = latlong_antipodes(normals, width, height);
+  const std::vector<Rgb> s = convolve_pairs(lines, normals, antipode, options.progress);
+  return to_latlong(s, *cosine_weights(lines, false, width, normals, antipode), width, height, units);
 }
 
 Image irradiance_latlong(const Image& latlong, int width, RadianceUnits units, const ConvolveOptions& options) {
   const int height = std::max(1, width / 2);
   const Lines lines = prepared_lines(latlong, options.max_input_size);
   const std::vector<Vec3> normals = latlong_normals(width, height);
-  return to_latlong(convolve_pairs(lines, normals, latlong_antipodes(normals, width, height), options.progress), width,
-                    height, unit_scale(units));
+  const std::vector<int> antipode = latlong_antipodes(normals, width, height);
+  const std::vector<Rgb> s = convolve_pairs(lines, normals, antipode, options.progress);
+  return to_latlong(s, *cosine_weights(lines, false, width, normals, antipode), width, height, units);
 }
 
 }  // namespace shadelab
