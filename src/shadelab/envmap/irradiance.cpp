@@ -6,10 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
-#include <memory>
-#include <mutex>
-#include <tuple>
 #include <vector>
 
 #include "shadelab/core/constants.h"
@@ -99,33 +95,32 @@ namespace {
 using namespace simd;
 
 // Emitters on lines. Entry k of line l is the prefix sum over the line's first k texels of the moment
-// vectors L_c dOmega w, 9 floats (x, y, z for R, then G, then B), summed in double and stored in float.
-// The unit lines (channels = 1) hold dOmega w alone, 3 floats: L = 1 on the same texels, whose sums are the
-// cosine weights W(n) = sum max(0, n.w) dOmega.
+// vectors L_c dOmega w, 12 floats (x, y, z for R, then G, then B, then W: L = 1), summed in double and
+// stored in float. Channel W's sums are the cosine weights W(n) = sum max(0, n.w) dOmega of the same
+// texels, computed in the same pass over the same runs, with the arithmetic of the colour channels.
+constexpr int channels = 4;
+constexpr std::size_t stride = 3 * channels;
 struct Lines {
   bool rings = false;   // lat-long latitude rings (wrapping runs) or cube face rows (prefix / suffix runs)
-  int channels = 3;     // 3: R, G, B; 1: the unit lines
   int count = 0;        // lines
   int length = 0;       // texels per line
   int face_size = 0;    // cube rows: N (line l is row l % N of face l / N)
-  int height = 0;       // rings: the lat-long's height
   std::vector<float> param;   // cube rows: tc of the row; rings: cot(theta) of the ring
-  FloatBuffer prefix;  // count * (length + 1) * 3 * channels, plus 4 floats of padding for 4-wide loads
+  FloatBuffer prefix;  // count * (length + 1) * 12, plus 4 floats of padding for 4-wide loads
   // Added to every normal's sum: sum over the lines of K_l (below), 9 values as a prefix entry.
-  std::array<double, 9> constant{};
+  std::array<double, stride> constant{};
   // M = sum of L dOmega d over every texel of the map (9 values as a prefix entry), in double.
-  std::array<double, 9> first_moment{};
+  std::array<double, stride> first_moment{};
 
-  std::size_t stride() const { return 3 * static_cast<std::size_t>(channels); }
   const float* entry(int line, int k) const {
-    return prefix.data() + (static_cast<std::size_t>(line) * static_cast<std::size_t>(length + 1) + static_cast<std::size_t>(k)) * stride();
+    return prefix.data() + (static_cast<std::size_t>(line) * static_cast<std::size_t>(length + 1) + static_cast<std::size_t>(k)) * stride;
   }
 };
 
 void store_prefix(Lines& lines, int line, const std::vector<double>& moments /* length * stride */) {
-  const std::size_t s = lines.stride();
+  const std::size_t s = stride;
   float* out = lines.prefix.data() + static_cast<std::size_t>(line) * static_cast<std::size_t>(lines.length + 1) * s;
-  double acc[9] = {};
+  double acc[stride] = {};
   for (std::size_t i = 0; i < s; ++i) out[i] = 0.0f;
   for (int k = 0; k < lines.length; ++k) {
     for (std::size_t i = 0; i < s; ++i) {
@@ -135,15 +130,14 @@ void store_prefix(Lines& lines, int line, const std::vector<double>& moments /* 
   }
 }
 
-// The lines of a cube (n = cube->size), or with cube == nullptr the unit lines of an n x n cube.
-Lines cube_lines(const CubeMap* cube, int n) {
+Lines cube_lines(const CubeMap& cube) {
+  const int n = cube.size;
   const std::vector<double>& solid_angle = cube_face_solid_angles(n);
   Lines lines;
-  lines.channels = cube != nullptr ? 3 : 1;
   lines.count = 6 * n;
   lines.length = n;
   lines.face_size = n;
-  const std::size_t s = lines.stride();
+  const std::size_t s = stride;
   lines.param.resize(static_cast<std::size_t>(lines.count));
   lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(n + 1) * s + 4, 0.0f);
   tbb::parallel_for(0, lines.count, [&](int l) {
@@ -153,9 +147,10 @@ Lines cube_lines(const CubeMap* cube, int n) {
     std::vector<double> m(static_cast<std::size_t>(n) * s);
     for (int x = 0; x < n; ++x) {
       const Vec3 d = texel_direction(f, x, y, n);
-      const Rgb l_omega = (cube != nullptr ? cube->texel(f, x, y) : Rgb::gray(1.0)) *
-                          solid_angle[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)];
-      for (int c = 0; c < lines.channels; ++c) {
+      const double omega = solid_angle[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)];
+      const Rgb radiance = cube.texel(f, x, y);
+      const double l_omega[channels] = {radiance.r * omega, radiance.g * omega, radiance.b * omega, omega};
+      for (int c = 0; c < channels; ++c) {
         m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
         m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
         m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
@@ -176,17 +171,16 @@ Lines cube_lines(const CubeMap* cube, int n) {
 //   sum_{x in run} m_y[x] + sum_{x not in run} m_y'[x + w/2] = K + sum_{x in run} (m_y[x] - m_y'[x + w/2])
 // with K = sum_x m_y'[x] (the whole of ring y'), and m_y[x] - m_y'[x + w/2] = (L_y[x] + L_y'[x + w/2]) dOmega
 // d(x, y) (d' = -d): a sum, no cancellation. The same texels as two lines, in half the line steps; the run is
-// ring y's. The K of all lines are summed once (Lines::constant). With ll == nullptr: the unit lines of a
-// w x h lat-long.
-Lines ring_lines(const Image* ll, int w, int h) {
+// ring y's. The K of all lines are summed once (Lines::constant).
+Lines ring_lines(const Image& ll) {
+  const int w = ll.width;
+  const int h = ll.height;
   const bool paired = w % 2 == 0 && h % 2 == 0;
   Lines lines;
   lines.rings = true;
-  lines.channels = ll != nullptr ? 3 : 1;
   lines.count = paired ? h / 2 : h;
   lines.length = w;
-  lines.height = h;
-  const std::size_t s = lines.stride();
+  const std::size_t s = stride;
   lines.param.resize(static_cast<std::size_t>(lines.count));
   lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(w + 1) * s + 4, 0.0f);
   std::vector<double> cos_phi(static_cast<std::size_t>(w)), sin_phi(static_cast<std::size_t>(w));
@@ -196,7 +190,7 @@ Lines ring_lines(const Image* ll, int w, int h) {
     sin_phi[static_cast<std::size_t>(x)] = std::sin(phi);
   }
   // Per line: K (the partner ring's total) and the line's share of M, summed afterwards in line order.
-  std::vector<std::array<double, 9>> k_line(static_cast<std::size_t>(lines.count)), m_line(static_cast<std::size_t>(lines.count));
+  std::vector<std::array<double, stride>> k_line(static_cast<std::size_t>(lines.count)), m_line(static_cast<std::size_t>(lines.count));
   const auto ring_moments = [&](int y, std::vector<double>& m) {
     const double theta = pi * (y + 0.5) / h;
     const double st = std::sin(theta);
@@ -204,15 +198,16 @@ Lines ring_lines(const Image* ll, int w, int h) {
     const double d_omega = latlong_texel_solid_angle(y, w, h);
     for (int x = 0; x < w; ++x) {
       const Vec3 d{st * cos_phi[static_cast<std::size_t>(x)], ct, st * sin_phi[static_cast<std::size_t>(x)]};
-      const Rgb l_omega = (ll != nullptr ? ll->at(x, y) : Rgb::gray(1.0)) * d_omega;
-      for (int c = 0; c < lines.channels; ++c) {
+      const Rgb l = ll.at(x, y);
+      const double l_omega[channels] = {l.r * d_omega, l.g * d_omega, l.b * d_omega, d_omega};
+      for (int c = 0; c < channels; ++c) {
         m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
         m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
         m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
       }
     }
   };
-  const auto total = [&](const std::vector<double>& m, std::array<double, 9>& t) {
+  const auto total = [&](const std::vector<double>& m, std::array<double, stride>& t) {
     for (int x = 0; x < w; ++x)
       for (std::size_t i = 0; i < s; ++i) t[i] += m[static_cast<std::size_t>(x) * s + i];
   };
@@ -221,12 +216,12 @@ Lines ring_lines(const Image* ll, int w, int h) {
     lines.param[static_cast<std::size_t>(y)] = static_cast<float>(std::cos(theta) / std::sin(theta));
     std::vector<double> m(static_cast<std::size_t>(w) * s);
     ring_moments(y, m);
-    std::array<double, 9>& mt = m_line[static_cast<std::size_t>(y)];
+    std::array<double, stride>& mt = m_line[static_cast<std::size_t>(y)];
     total(m, mt);
     if (paired) {
       std::vector<double> partner(static_cast<std::size_t>(w) * s);
       ring_moments(h - 1 - y, partner);
-      std::array<double, 9>& k = k_line[static_cast<std::size_t>(y)];
+      std::array<double, stride>& k = k_line[static_cast<std::size_t>(y)];
       total(partner, k);
       for (std::size_t i = 0; i < s; ++i) mt[i] += k[i];
       for (int x = 0; x < w; ++x) {
@@ -337,13 +332,12 @@ SHADELAB_INLINE void runs8(const Lines& lines, const NormalBlock& b, int line, i
   }
 }
 
-// The discrete sum of every normal of the block, sum L max(0, n.w) dOmega per channel (C = lines.channels;
-// the unit lines give W(n) in channel 0), written to out[0 .. count).
-template <int C>
-SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& b, Rgb* out) {
+// The discrete sums of every normal of the block, S_c(n) = sum L_c max(0, n.w) dOmega for R, G, B and
+// W(n) (L = 1), written to out[0 .. count).
+using Sums = std::array<double, channels>;
+SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& b, Sums* out) {
   const auto p = static_cast<std::size_t>(b.padded);
-  constexpr auto cs = static_cast<std::size_t>(C);
-  std::vector<f4> acc(cs * p, f4{});
+  std::vector<f4> acc(4 * p, f4{});
   // Runs of up to two lines at a time: the accumulators are read and written once per two lines, and each
   // line's terms are added in line order, so the sums are the same as one line at a time, bit for bit.
   std::vector<int> lo(2 * p), hi(2 * p);
@@ -354,9 +348,9 @@ SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& 
       const auto o = static_cast<std::size_t>(j) * p;
       for (int i = 0; i < b.padded; i += 8) runs8(lines, b, line + j, i, lo.data() + o + i, hi.data() + o + i, wrap.data() + o + i);
     }
-    // Line l's term of normal i for channel offset c (0, 3, 6): n . (P[hi] - P[lo] + wrap total). Lane 3 of
-    // each load reads the next channel's (or entry's) x; n's lane 3 is 0, so it adds nothing. Each channel
-    // is its own sum, so channel 0 of the unit lines is computed exactly as channel 0 of RGB lines.
+    // Line l's term of normal i for channel offset c (0, 3, 6, 9): n . (P[hi] - P[lo] + wrap total). Lane 3
+    // of each load reads the next channel's (or the next entry's) x; n's lane 3 is 0, so it adds nothing.
+    // Each channel is its own sum in the same order: for a constant L, S_c = L W step by step.
     const auto term = [&](int l, std::size_t o, std::size_t i, const f4& n, int c) SHADELAB_INLINE_LAMBDA {
       const float* e0 = lines.entry(l, lo[o + i]) + c;
       const float* e1 = lines.entry(l, hi[o + i]) + c;
@@ -364,30 +358,26 @@ SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& 
     };
     for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {
       const f4 n = load4(b.n4.data() + 4 * i);
-      if constexpr (C == 3) {
-        f4 ar = acc[3 * i], ag = acc[3 * i + 1], ab = acc[3 * i + 2];
-        for (int j = 0; j < pair; ++j) {
-          const auto o = static_cast<std::size_t>(j) * p;
-          ar += term(line + j, o, i, n, 0);
-          ag += term(line + j, o, i, n, 3);
-          ab += term(line + j, o, i, n, 6);
-        }
-        acc[3 * i] = ar;
-        acc[3 * i + 1] = ag;
-        acc[3 * i + 2] = ab;
-      } else {
-        f4 a = acc[i];
-        for (int j = 0; j < pair; ++j) a += term(line + j, static_cast<std::size_t>(j) * p, i, n, 0);
-        acc[i] = a;
+      f4 ar = acc[4 * i], ag = acc[4 * i + 1], ab = acc[4 * i + 2], aw = acc[4 * i + 3];
+      for (int j = 0; j < pair; ++j) {
+        const auto o = static_cast<std::size_t>(j) * p;
+        ar += term(line + j, o, i, n, 0);
+        ag += term(line + j, o, i, n, 3);
+        ab += term(line + j, o, i, n, 6);
+        aw += term(line + j, o, i, n, 9);
       }
+      acc[4 * i] = ar;
+      acc[4 * i + 1] = ag;
+      acc[4 * i + 2] = ab;
+      acc[4 * i + 3] = aw;
     }
   }
   for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {
-    Rgb e;
-    for (int c = 0; c < C; ++c) {
-      const f4 a = acc[cs * i + static_cast<std::size_t>(c)];
+    Sums e{};
+    for (std::size_t c = 0; c < 4; ++c) {
+      const f4 a = acc[4 * i + c];
       e[c] = static_cast<double>(a[0]) + static_cast<double>(a[1]) + static_cast<double>(a[2]);
-      const auto k = static_cast<std::size_t>(3 * c);
+      const std::size_t k = 3 * c;
       e[c] += static_cast<double>(b.n4[4 * i]) * lines.constant[k] + static_cast<double>(b.n4[4 * i + 1]) * lines.constant[k + 1] +
               static_cast<double>(b.n4[4 * i + 2]) * lines.constant[k + 2];
     }
@@ -395,19 +385,15 @@ SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& 
   }
 }
 
-SHADELAB_TARGET_AVX2 void convolve_block_avx2(const Lines& lines, const NormalBlock& b, Rgb* out) {
-  convolve_block_impl<3>(lines, b, out);
+SHADELAB_TARGET_AVX2 void convolve_block_avx2(const Lines& lines, const NormalBlock& b, Sums* out) {
+  convolve_block_impl(lines, b, out);
 }
-void convolve_block_base(const Lines& lines, const NormalBlock& b, Rgb* out) { convolve_block_impl<3>(lines, b, out); }
-SHADELAB_TARGET_AVX2 void convolve_block_unit_avx2(const Lines& lines, const NormalBlock& b, Rgb* out) {
-  convolve_block_impl<1>(lines, b, out);
-}
-void convolve_block_unit_base(const Lines& lines, const NormalBlock& b, Rgb* out) { convolve_block_impl<1>(lines, b, out); }
+void convolve_block_base(const Lines& lines, const NormalBlock& b, Sums* out) { convolve_block_impl(lines, b, out); }
 
 // E(n) for every normal, in blocks run in parallel; progress between groups of blocks.
-std::vector<Rgb> convolve(const Lines& lines, const std::vector<Vec3>& normals, const ProgressFn& progress) {
+std::vector<Sums> convolve(const Lines& lines, const std::vector<Vec3>& normals, const ProgressFn& progress) {
   const int count = static_cast<int>(normals.size());
-  std::vector<Rgb> out(normals.size());
+  std::vector<Sums> out(normals.size());
   // Large blocks: every block streams all lines once, so fewer blocks mean less memory traffic.
   const int block = std::clamp((count / 8 + 7) / 8 * 8, 512, 4096);
   const int blocks = (count + block - 1) / block;
@@ -420,10 +406,10 @@ std::vector<Rgb> convolve(const Lines& lines, const std::vector<Vec3>& normals, 
         const int first = k * block;
         const int n = std::min(block, count - first);
         const NormalBlock b = make_block(normals.data() + first, n, lines.rings);
-        if (lines.channels == 1) {
-          (avx ? convolve_block_unit_avx2 : convolve_block_unit_base)(lines, b, out.data() + first);
+        if (avx) {
+          convolve_block_avx2(lines, b, out.data() + first);
         } else {
-          (avx ? convolve_block_avx2 : convolve_block_base)(lines, b, out.data() + first);
+          convolve_block_base(lines, b, out.data() + first);
         }
       }
     });
@@ -439,17 +425,14 @@ std::vector<Rgb> convolve(const Lines& lines, const std::vector<Vec3>& normals, 
 // rounding error (taking it the other way round, E(-n) = E(n) - n.M with n.M > 0, would cancel on the dark
 // side). A pair whose channels disagree in sign is convolved on both sides. antipode[i] is the index of
 // -normals[i], or -1.
-std::vector<Rgb> convolve_pairs(const Lines& lines, const std::vector<Vec3>& normals, const std::vector<int>& antipode,
+std::vector<Sums> convolve_pairs(const Lines& lines, const std::vector<Vec3>& normals, const std::vector<int>& antipode,
                                 const ProgressFn& progress) {
-  double m[3][3] = {};  // m[c] = M of channel c (x, y, z)
-  const int channels = lines.channels;
+  double m[channels][3] = {};  // m[c] = M of channel c (x, y, z)
   for (std::size_t c = 0; c < static_cast<std::size_t>(channels); ++c)
     for (std::size_t k = 0; k < 3; ++k) m[c][k] = lines.first_moment[3 * c + k];
   const auto n_dot_m = [&](const Vec3& n, int c) { return n.x * m[c][0] + n.y * m[c][1] + n.z * m[c][2]; };
   const auto dark = [&](const Vec3& n) {
-    for (int c = 0; c < channels; ++c)
-      if (n_dot_m(n, c) > 0.0) return false;
-    return true;
+    return n_dot_m(n, 0) <= 0.0 && n_dot_m(n, 1) <= 0.0 && n_dot_m(n, 2) <= 0.0;
   };
   std::vector<int> from(normals.size(), -1);  // from[j] = i: E(j) derived from E(i)
   std::vector<Vec3> direct;
@@ -474,13 +457,15 @@ std::vector<Rgb> convolve_pairs(const Lines& lines, const std::vector<Vec3>& nor
       direct_index.push_back(i);
     }
   }
-  const std::vector<Rgb> e_direct = convolve(lines, direct, progress);
-  std::vector<Rgb> out(normals.size());
+  const std::vector<Sums> e_direct = convolve(lines, direct, progress);
+  std::vector<Sums> out(normals.size());
   for (std::size_t k = 0; k < direct.size(); ++k) out[direct_index[k]] = e_direct[k];
   for (std::size_t j = 0; j < normals.size(); ++j) {
     if (from[j] < 0) continue;
     const auto i = static_cast<std::size_t>(from[j]);
-    for (int c = 0; c < channels; ++c) out[j][c] = out[i][c] - n_dot_m(normals[i], c);  // n_i.M_c <= 0
+    // n_i.M_c <= 0 for R, G, B; W's M is the first moment of the texel layout, zero up to rounding (no
+    // cancellation either way), and W takes the same path as the colours, so a constant keeps S = L W.
+    for (int c = 0; c < channels; ++c) out[j][static_cast<std::size_t>(c)] = out[i][static_cast<std::size_t>(c)] - n_dot_m(normals[i], c);
   }
   return out;
 }
@@ -532,69 +517,45 @@ std::vector<Vec3> latlong_normals(int width, int height) {
   return n;
 }
 
-// E(n) (radiometric) or E(n) / pi (game) from the discrete sums S(n) and the cosine weights W(n):
-// pi S / W or S / W. S / W is one division, so a constant L, whose S(n) is L W(n) (below), gives L exactly.
-Rgb normalise(const Rgb& s, double w, RadianceUnits units) {
+// E(n) (radiometric) or E(n) / pi (game) from the discrete sums: pi S / W or S / W. S / W is one division,
+// so a constant L, whose S(n) is L W(n), gives L exactly when L W(n) is exact (L a power of two such as 0.5:
+// every step scales exactly) and to float rounding of the prefix entries otherwise.
+Rgb normalise(const Sums& s, RadianceUnits units) {
+  const double w = s[3];
   if (!(w > 0.0)) return Rgb{};  // no texel in n's hemisphere: S(n) = 0 too
-  const Rgb e = s / w;
+  const Rgb e{s[0] / w, s[1] / w, s[2] / w};
   return units == RadianceUnits::game ? e : e * pi;
 }
 
-CubeMap to_cube(const std::vector<Rgb>& s, const std::vector<double>& w, int size, RadianceUnits units) {
+CubeMap to_cube(const std::vector<Sums>& s, int size, RadianceUnits units) {
   CubeMap out(size);
   std::size_t k = 0;
   for (int f = 0; f < 6; ++f)
     for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x, ++k) out.set(f, x, y, normalise(s[k], w[k], units));
+      for (int x = 0; x < size; ++x) out.set(f, x, y, normalise(s[k++], units));
   return out;
 }
 
-Image to_latlong(const std::vector<Rgb>& s, const std::vector<double>& w, int width, int height, RadianceUnits units) {
+Image to_latlong(const std::vector<Sums>& s, int width, int height, RadianceUnits units) {
   Image out(width, height);
   std::size_t k = 0;
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x, ++k) out.set(x, y, normalise(s[k], w[k], units));
+    for (int x = 0; x < width; ++x) out.set(x, y, normalise(s[k++], units));
   return out;
 }
 
 Lines prepared_lines(const CubeMap& radiance, int max_size) {
-  if (max_size <= 0 || radiance.size <= max_size) return cube_lines(&radiance, radiance.size);
+  if (max_size <= 0 || radiance.size <= max_size) return cube_lines(radiance);
   CubeMap in = radiance;
   while (in.size > max_size && in.size % 2 == 0) in = downsample_cube(in);
-  return cube_lines(&in, in.size);
+  return cube_lines(in);
 }
 
 Lines prepared_lines(const Image& latlong, int max_size) {
-  if (max_size <= 0 || latlong.width <= 4 * max_size) return ring_lines(&latlong, latlong.width, latlong.height);
+  if (max_size <= 0 || latlong.width <= 4 * max_size) return ring_lines(latlong);
   Image in = latlong;
   while (in.width > 4 * max_size && in.width % 2 == 0 && in.height % 2 == 0) in = downsample_latlong(in);
-  return ring_lines(&in, in.width, in.height);
-}
-
-// W(n) = sum max(0, n.w) dOmega over the texels of `lines` (after any halving), for every output normal: the
-// sums of the unit lines (L = 1 on the same texels), with the arithmetic of one channel of the radiance
-// lines. For a constant L every step of S(n) is L times the same step of W(n) (a power of two such as 0.5
-// scales float rounding exactly, so S = 0.5 W bit for bit; other constants agree to float rounding). W
-// depends on the texel geometry only, never on the values: cached per (input layout and size, output
-// layout and size). The unit lines are 3 floats per entry against 9, so W costs about a third of S, and
-// nothing on a cache hit.
-std::shared_ptr<const std::vector<double>> cosine_weights(const Lines& lines, bool cube_out, int out_size,
-                                                          const std::vector<Vec3>& normals, const std::vector<int>& antipode) {
-  using Key = std::tuple<bool, int, int, bool, int>;
-  static std::mutex mutex;
-  static std::map<Key, std::shared_ptr<const std::vector<double>>> cache;
-  const Key key{lines.rings, lines.rings ? lines.length : lines.face_size, lines.height, cube_out, out_size};
-  {
-    const std::lock_guard lock(mutex);
-    if (const auto it = cache.find(key); it != cache.end()) return it->second;
-  }
-  const Lines unit = lines.rings ? ring_lines(nullptr, lines.length, lines.height) : cube_lines(nullptr, lines.face_size);
-  const std::vector<Rgb> sums = convolve_pairs(unit, normals, antipode, {});
-  auto w = std::make_shared<std::vector<double>>(sums.size());
-  for (std::size_t i = 0; i < sums.size(); ++i) (*w)[i] = sums[i].r;
-  const std::lock_guard lock(mutex);
-  if (cache.size() >= 32) cache.clear();  // a bound; a miss only costs the unit convolution again
-  return cache.emplace(key, std::move(w)).first->second;
+  return ring_lines(in);
 }
 
 }  // namespace
@@ -602,35 +563,29 @@ std::shared_ptr<const std::vector<double>> cosine_weights(const Lines& lines, bo
 CubeMap irradiance_cube(const CubeMap& radiance, int size, RadianceUnits units, const ConvolveOptions& options) {
   const Lines lines = prepared_lines(radiance, options.max_input_size);
   const std::vector<Vec3> normals = cube_normals(size);
-  const std::vector<int> antipode = cube_antipodes(normals, size);
-  const std::vector<Rgb> s = convolve_pairs(lines, normals, antipode, options.progress);
-  return to_cube(s, *cosine_weights(lines, true, size, normals, antipode), size, units);
+  return to_cube(convolve_pairs(lines, normals, cube_antipodes(normals, size), options.progress), size, units);
 }
 
 CubeMap irradiance_cube(const Image& latlong, int size, RadianceUnits units, const ConvolveOptions& options) {
   const Lines lines = prepared_lines(latlong, options.max_input_size);
   const std::vector<Vec3> normals = cube_normals(size);
-  const std::vector<int> antipode = cube_antipodes(normals, size);
-  const std::vector<Rgb> s = convolve_pairs(lines, normals, antipode, options.progress);
-  return to_cube(s, *cosine_weights(lines, true, size, normals, antipode), size, units);
+  return to_cube(convolve_pairs(lines, normals, cube_antipodes(normals, size), options.progress), size, units);
 }
 
 Image irradiance_latlong(const CubeMap& radiance, int width, RadianceUnits units, const ConvolveOptions& options) {
   const int height = std::max(1, width / 2);
   const Lines lines = prepared_lines(radiance, options.max_input_size);
   const std::vector<Vec3> normals = latlong_normals(width, height);
-  const std::vector<int> antipode = latlong_antipodes(normals, width, height);
-  const std::vector<Rgb> s = convolve_pairs(lines, normals, antipode, options.progress);
-  return to_latlong(s, *cosine_weights(lines, false, width, normals, antipode), width, height, units);
+  return to_latlong(convolve_pairs(lines, normals, latlong_antipodes(normals, width, height), options.progress), width,
+                    height, units);
 }
 
 Image irradiance_latlong(const Image& latlong, int width, RadianceUnits units, const ConvolveOptions& options) {
   const int height = std::max(1, width / 2);
   const Lines lines = prepared_lines(latlong, options.max_input_size);
   const std::vector<Vec3> normals = latlong_normals(width, height);
-  const std::vector<int> antipode = latlong_antipodes(normals, width, height);
-  const std::vector<Rgb> s = convolve_pairs(lines, normals, antipode, options.progress);
-  return to_latlong(s, *cosine_weights(lines, false, width, normals, antipode), width, height, units);
+  return to_latlong(convolve_pairs(lines, normals, latlong_antipodes(normals, width, height), options.progress), width,
+                    height, units);
 }
 
 }  // namespace shadelab
