@@ -8,11 +8,11 @@
 //
 // W(n) is pi for the continuous integral but not over texel centres: 1.2e-4 off at a 128 x 64 lat-long
 // (6 x 16^2 out; 3e-4 at odd output sizes), 2.2e-3 at a 6 x 15^2 cube, shrinking as 1/N^2; the plain sum
-// S(n) carried that error into every constant. On real maps the normalisation is neutral, slightly worse:
-// on Blender's eight 1024 x 512 HDRIs, against the exact integral of each piecewise-constant map, the
-// mean relative error grows by 0.3e-6 .. 0.7e-6 (from 4e-6 .. 2.6e-5) and the max is unchanged to three
-// digits (1.4e-5 .. 2.7e-3: texels cut by the horizon, which no per-normal factor can fix); the exact
-// constant was taken for that (docs/envmap.md has the table).
+// S(n) carried that error into every constant. On real maps the normalisation is neutral to slightly
+// worse: on Blender's eight 1024 x 512 HDRIs, against the exact integral of each piecewise-constant map,
+// the mean relative error grows by 0.3e-6 .. 0.7e-6 on seven (from 4e-6 .. 2.6e-5; studio's falls by
+// 0.2e-6) and the max (1.4e-5 .. 2.7e-3, texels cut by the horizon next to a bright source, which no
+// per-normal factor can fix) by at most 1.7e-6; the exact constant was taken for that (docs/envmap.md).
 //
 // S and W are exact for the input as given (cube texels, or lat-long texels with their exact solid
 // angles), and they are computed without visiting every texel for every normal. The texels lie on lines (cube face rows,
