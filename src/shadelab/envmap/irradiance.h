@@ -12,7 +12,8 @@
 // worse: on Blender's eight 1024 x 512 HDRIs, against the exact integral of each piecewise-constant map,
 // the mean relative error grows by 0.3e-6 .. 0.7e-6 on seven (from 4e-6 .. 2.6e-5; studio's falls by
 // 0.2e-6) and the max (1.4e-5 .. 2.7e-3, texels cut by the horizon next to a bright source, which no
-// per-normal factor can fix) by at most 1.7e-6; the exact constant was taken for that (docs/envmap.md).
+// per-normal factor can fix) by at most 2.6e-6, the largest |pi / W - 1| at that input size; the exact
+// constant was taken for that (docs/envmap.md).
 //
 // S and W are exact for the input as given (cube texels, or lat-long texels with their exact solid
 // angles), and they are computed without visiting every texel for every normal. The texels lie on lines (cube face rows,
