@@ -59,6 +59,7 @@ Image downsample_latlong(const Image& ll) {
 Rgb irradiance_brute_force(const CubeMap& radiance, const Vec3& n) {
   const CubeTexelTable& t = CubeTexelTable::get(radiance.size);
   Rgb sum;
+  double weight = 0.0;
   const auto size = static_cast<std::size_t>(radiance.size);
   for (std::size_t k = 0; k < t.direction.size(); ++k) {
     const double c = dot(n, t.direction[k]);
@@ -66,22 +67,27 @@ Rgb irradiance_brute_force(const CubeMap& radiance, const Vec3& n) {
     const std::size_t face = k / (size * size);
     const std::size_t p = k % (size * size);
     sum += radiance.faces[face].at(static_cast<int>(p % size), static_cast<int>(p / size)) * (c * t.solid_angle[k]);
+    weight += c * t.solid_angle[k];
   }
-  return sum;
+  return weight > 0.0 ? sum / weight * pi : Rgb{};
 }
 
 Rgb irradiance_brute_force(const Image& latlong, const Vec3& n) {
   const int w = latlong.width;
   const int h = latlong.height;
   Rgb sum;
+  double weight = 0.0;
   for (int y = 0; y < h; ++y) {
     const double d_omega = latlong_texel_solid_angle(y, w, h);
     for (int x = 0; x < w; ++x) {
       const double c = dot(n, latlong_direction((x + 0.5) / w, (y + 0.5) / h));
-      if (c > 0.0) sum += latlong.at(x, y) * (c * d_omega);
+      if (c > 0.0) {
+        sum += latlong.at(x, y) * (c * d_omega);
+        weight += c * d_omega;
+      }
     }
   }
-  return sum;
+  return weight > 0.0 ? sum / weight * pi : Rgb{};
 }
 
 namespace {
@@ -89,32 +95,37 @@ namespace {
 using namespace simd;
 
 // Emitters on lines. Entry k of line l is the prefix sum over the line's first k texels of the moment
-// vectors L_c dOmega w, 9 floats (x, y, z for R, then G, then B), summed in double and stored in float.
+// vectors L_c dOmega w, 12 floats (x, y, z for R, then G, then B, then W: L = 1), summed in double and
+// stored in float. Channel W's sums are the cosine weights W(n) = sum max(0, n.w) dOmega of the same
+// texels, computed in the same pass over the same runs, with the arithmetic of the colour channels.
+constexpr int channels = 4;
+constexpr std::size_t stride = 3 * channels;
 struct Lines {
   bool rings = false;   // lat-long latitude rings (wrapping runs) or cube face rows (prefix / suffix runs)
   int count = 0;        // lines
   int length = 0;       // texels per line
   int face_size = 0;    // cube rows: N (line l is row l % N of face l / N)
   std::vector<float> param;   // cube rows: tc of the row; rings: cot(theta) of the ring
-  FloatBuffer prefix;  // count * (length + 1) * 9, plus 4 floats of padding for 4-wide loads
+  FloatBuffer prefix;  // count * (length + 1) * 12, plus 4 floats of padding for 4-wide loads
   // Added to every normal's sum: sum over the lines of K_l (below), 9 values as a prefix entry.
-  std::array<double, 9> constant{};
+  std::array<double, stride> constant{};
   // M = sum of L dOmega d over every texel of the map (9 values as a prefix entry), in double.
-  std::array<double, 9> first_moment{};
+  std::array<double, stride> first_moment{};
 
   const float* entry(int line, int k) const {
-    return prefix.data() + (static_cast<std::size_t>(line) * static_cast<std::size_t>(length + 1) + static_cast<std::size_t>(k)) * 9;
+    return prefix.data() + (static_cast<std::size_t>(line) * static_cast<std::size_t>(length + 1) + static_cast<std::size_t>(k)) * stride;
   }
 };
 
-void store_prefix(Lines& lines, int line, const std::vector<double>& moments /* length * 9 */) {
-  float* out = lines.prefix.data() + static_cast<std::size_t>(line) * static_cast<std::size_t>(lines.length + 1) * 9;
-  double acc[9] = {};
-  for (int i = 0; i < 9; ++i) out[i] = 0.0f;
+void store_prefix(Lines& lines, int line, const std::vector<double>& moments /* length * stride */) {
+  const std::size_t s = stride;
+  float* out = lines.prefix.data() + static_cast<std::size_t>(line) * static_cast<std::size_t>(lines.length + 1) * s;
+  double acc[stride] = {};
+  for (std::size_t i = 0; i < s; ++i) out[i] = 0.0f;
   for (int k = 0; k < lines.length; ++k) {
-    for (int i = 0; i < 9; ++i) {
-      acc[i] += moments[static_cast<std::size_t>(k) * 9 + static_cast<std::size_t>(i)];
-      out[static_cast<std::size_t>(k + 1) * 9 + static_cast<std::size_t>(i)] = static_cast<float>(acc[i]);
+    for (std::size_t i = 0; i < s; ++i) {
+      acc[i] += moments[static_cast<std::size_t>(k) * s + i];
+      out[static_cast<std::size_t>(k + 1) * s + i] = static_cast<float>(acc[i]);
     }
   }
 }
@@ -126,27 +137,30 @@ Lines cube_lines(const CubeMap& cube) {
   lines.count = 6 * n;
   lines.length = n;
   lines.face_size = n;
+  const std::size_t s = stride;
   lines.param.resize(static_cast<std::size_t>(lines.count));
-  lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(n + 1) * 9 + 4, 0.0f);
+  lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(n + 1) * s + 4, 0.0f);
   tbb::parallel_for(0, lines.count, [&](int l) {
     const int f = l / n;
     const int y = l % n;
     lines.param[static_cast<std::size_t>(l)] = static_cast<float>((2.0 * y + 1.0) / n - 1.0);
-    std::vector<double> m(static_cast<std::size_t>(n) * 9);
+    std::vector<double> m(static_cast<std::size_t>(n) * s);
     for (int x = 0; x < n; ++x) {
       const Vec3 d = texel_direction(f, x, y, n);
-      const Rgb l_omega = cube.texel(f, x, y) * solid_angle[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)];
-      for (int c = 0; c < 3; ++c) {
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
+      const double omega = solid_angle[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)];
+      const Rgb radiance = cube.texel(f, x, y);
+      const double l_omega[channels] = {radiance.r * omega, radiance.g * omega, radiance.b * omega, omega};
+      for (int c = 0; c < channels; ++c) {
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
       }
     }
     store_prefix(lines, l, m);
   });
   for (int l = 0; l < lines.count; ++l) {
     const float* t = lines.entry(l, lines.length);
-    for (std::size_t i = 0; i < 9; ++i) lines.first_moment[i] += static_cast<double>(t[i]);
+    for (std::size_t i = 0; i < s; ++i) lines.first_moment[i] += static_cast<double>(t[i]);
   }
   return lines;
 }
@@ -166,8 +180,9 @@ Lines ring_lines(const Image& ll) {
   lines.rings = true;
   lines.count = paired ? h / 2 : h;
   lines.length = w;
+  const std::size_t s = stride;
   lines.param.resize(static_cast<std::size_t>(lines.count));
-  lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(w + 1) * 9 + 4, 0.0f);
+  lines.prefix.assign(static_cast<std::size_t>(lines.count) * static_cast<std::size_t>(w + 1) * s + 4, 0.0f);
   std::vector<double> cos_phi(static_cast<std::size_t>(w)), sin_phi(static_cast<std::size_t>(w));
   for (int x = 0; x < w; ++x) {
     const double phi = two_pi * ((x + 0.5) / w - 0.5);  // latlong.h: phi = 2 pi (u - 0.5)
@@ -175,7 +190,7 @@ Lines ring_lines(const Image& ll) {
     sin_phi[static_cast<std::size_t>(x)] = std::sin(phi);
   }
   // Per line: K (the partner ring's total) and the line's share of M, summed afterwards in line order.
-  std::vector<std::array<double, 9>> k_line(static_cast<std::size_t>(lines.count)), m_line(static_cast<std::size_t>(lines.count));
+  std::vector<std::array<double, stride>> k_line(static_cast<std::size_t>(lines.count)), m_line(static_cast<std::size_t>(lines.count));
   const auto ring_moments = [&](int y, std::vector<double>& m) {
     const double theta = pi * (y + 0.5) / h;
     const double st = std::sin(theta);
@@ -183,40 +198,41 @@ Lines ring_lines(const Image& ll) {
     const double d_omega = latlong_texel_solid_angle(y, w, h);
     for (int x = 0; x < w; ++x) {
       const Vec3 d{st * cos_phi[static_cast<std::size_t>(x)], ct, st * sin_phi[static_cast<std::size_t>(x)]};
-      const Rgb l_omega = ll.at(x, y) * d_omega;
-      for (int c = 0; c < 3; ++c) {
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
-        m[static_cast<std::size_t>(x) * 9 + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
+      const Rgb l = ll.at(x, y);
+      const double l_omega[channels] = {l.r * d_omega, l.g * d_omega, l.b * d_omega, d_omega};
+      for (int c = 0; c < channels; ++c) {
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c)] = l_omega[c] * d.x;
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 1)] = l_omega[c] * d.y;
+        m[static_cast<std::size_t>(x) * s + static_cast<std::size_t>(3 * c + 2)] = l_omega[c] * d.z;
       }
     }
   };
-  const auto total = [&](const std::vector<double>& m, std::array<double, 9>& t) {
+  const auto total = [&](const std::vector<double>& m, std::array<double, stride>& t) {
     for (int x = 0; x < w; ++x)
-      for (std::size_t i = 0; i < 9; ++i) t[i] += m[static_cast<std::size_t>(x) * 9 + i];
+      for (std::size_t i = 0; i < s; ++i) t[i] += m[static_cast<std::size_t>(x) * s + i];
   };
   tbb::parallel_for(0, lines.count, [&](int y) {
     const double theta = pi * (y + 0.5) / h;
     lines.param[static_cast<std::size_t>(y)] = static_cast<float>(std::cos(theta) / std::sin(theta));
-    std::vector<double> m(static_cast<std::size_t>(w) * 9);
+    std::vector<double> m(static_cast<std::size_t>(w) * s);
     ring_moments(y, m);
-    std::array<double, 9>& mt = m_line[static_cast<std::size_t>(y)];
+    std::array<double, stride>& mt = m_line[static_cast<std::size_t>(y)];
     total(m, mt);
     if (paired) {
-      std::vector<double> partner(static_cast<std::size_t>(w) * 9);
+      std::vector<double> partner(static_cast<std::size_t>(w) * s);
       ring_moments(h - 1 - y, partner);
-      std::array<double, 9>& k = k_line[static_cast<std::size_t>(y)];
+      std::array<double, stride>& k = k_line[static_cast<std::size_t>(y)];
       total(partner, k);
-      for (std::size_t i = 0; i < 9; ++i) mt[i] += k[i];
+      for (std::size_t i = 0; i < s; ++i) mt[i] += k[i];
       for (int x = 0; x < w; ++x) {
         const auto xs = static_cast<std::size_t>((x + w / 2) % w);
-        for (std::size_t i = 0; i < 9; ++i) m[static_cast<std::size_t>(x) * 9 + i] -= partner[xs * 9 + i];
+        for (std::size_t i = 0; i < s; ++i) m[static_cast<std::size_t>(x) * s + i] -= partner[xs * s + i];
       }
     }
     store_prefix(lines, y, m);
   });
   for (std::size_t l = 0; l < k_line.size(); ++l) {
-    for (std::size_t i = 0; i < 9; ++i) {
+    for (std::size_t i = 0; i < s; ++i) {
       lines.constant[i] += k_line[l][i];
       lines.first_moment[i] += m_line[l][i];
     }
@@ -316,10 +332,12 @@ SHADELAB_INLINE void runs8(const Lines& lines, const NormalBlock& b, int line, i
   }
 }
 
-// E(n) (radiometric) of every normal of the block, written to out[0 .. count).
-SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& b, Rgb* out) {
+// The discrete sums of every normal of the block, S_c(n) = sum L_c max(0, n.w) dOmega for R, G, B and
+// W(n) (L = 1), written to out[0 .. count).
+using Sums = std::array<double, channels>;
+SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& b, Sums* out) {
   const auto p = static_cast<std::size_t>(b.padded);
-  std::vector<f4> acc(3 * p, f4{});
+  std::vector<f4> acc(4 * p, f4{});
   // Runs of up to two lines at a time: the accumulators are read and written once per two lines, and each
   // line's terms are added in line order, so the sums are the same as one line at a time, bit for bit.
   std::vector<int> lo(2 * p), hi(2 * p);
@@ -330,8 +348,9 @@ SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& 
       const auto o = static_cast<std::size_t>(j) * p;
       for (int i = 0; i < b.padded; i += 8) runs8(lines, b, line + j, i, lo.data() + o + i, hi.data() + o + i, wrap.data() + o + i);
     }
-    // Line l's term of normal i for channel offset c (0, 3, 6): n . (P[hi] - P[lo] + wrap total). Lane 3 of
-    // each load reads the next channel's x; n's lane 3 is 0, so it adds nothing.
+    // Line l's term of normal i for channel offset c (0, 3, 6, 9): n . (P[hi] - P[lo] + wrap total). Lane 3
+    // of each load reads the next channel's (or the next entry's) x; n's lane 3 is 0, so it adds nothing.
+    // Each channel is its own sum in the same order: for a constant L, S_c = L W step by step.
     const auto term = [&](int l, std::size_t o, std::size_t i, const f4& n, int c) SHADELAB_INLINE_LAMBDA {
       const float* e0 = lines.entry(l, lo[o + i]) + c;
       const float* e1 = lines.entry(l, hi[o + i]) + c;
@@ -339,24 +358,26 @@ SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& 
     };
     for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {
       const f4 n = load4(b.n4.data() + 4 * i);
-      f4 ar = acc[3 * i], ag = acc[3 * i + 1], ab = acc[3 * i + 2];
+      f4 ar = acc[4 * i], ag = acc[4 * i + 1], ab = acc[4 * i + 2], aw = acc[4 * i + 3];
       for (int j = 0; j < pair; ++j) {
         const auto o = static_cast<std::size_t>(j) * p;
         ar += term(line + j, o, i, n, 0);
         ag += term(line + j, o, i, n, 3);
         ab += term(line + j, o, i, n, 6);
+        aw += term(line + j, o, i, n, 9);
       }
-      acc[3 * i] = ar;
-      acc[3 * i + 1] = ag;
-      acc[3 * i + 2] = ab;
+      acc[4 * i] = ar;
+      acc[4 * i + 1] = ag;
+      acc[4 * i + 2] = ab;
+      acc[4 * i + 3] = aw;
     }
   }
   for (std::size_t i = 0; i < static_cast<std::size_t>(b.count); ++i) {
-    Rgb e;
-    for (int c = 0; c < 3; ++c) {
-      const f4 a = acc[3 * i + static_cast<std::size_t>(c)];
+    Sums e{};
+    for (std::size_t c = 0; c < 4; ++c) {
+      const f4 a = acc[4 * i + c];
       e[c] = static_cast<double>(a[0]) + static_cast<double>(a[1]) + static_cast<double>(a[2]);
-      const auto k = static_cast<std::size_t>(3 * c);
+      const std::size_t k = 3 * c;
       e[c] += static_cast<double>(b.n4[4 * i]) * lines.constant[k] + static_cast<double>(b.n4[4 * i + 1]) * lines.constant[k + 1] +
               static_cast<double>(b.n4[4 * i + 2]) * lines.constant[k + 2];
     }
@@ -364,15 +385,15 @@ SHADELAB_INLINE void convolve_block_impl(const Lines& lines, const NormalBlock& 
   }
 }
 
-SHADELAB_TARGET_AVX2 void convolve_block_avx2(const Lines& lines, const NormalBlock& b, Rgb* out) {
+SHADELAB_TARGET_AVX2 void convolve_block_avx2(const Lines& lines, const NormalBlock& b, Sums* out) {
   convolve_block_impl(lines, b, out);
 }
-void convolve_block_base(const Lines& lines, const NormalBlock& b, Rgb* out) { convolve_block_impl(lines, b, out); }
+void convolve_block_base(const Lines& lines, const NormalBlock& b, Sums* out) { convolve_block_impl(lines, b, out); }
 
 // E(n) for every normal, in blocks run in parallel; progress between groups of blocks.
-std::vector<Rgb> convolve(const Lines& lines, const std::vector<Vec3>& normals, const ProgressFn& progress) {
+std::vector<Sums> convolve(const Lines& lines, const std::vector<Vec3>& normals, const ProgressFn& progress) {
   const int count = static_cast<int>(normals.size());
-  std::vector<Rgb> out(normals.size());
+  std::vector<Sums> out(normals.size());
   // Large blocks: every block streams all lines once, so fewer blocks mean less memory traffic.
   const int block = std::clamp((count / 8 + 7) / 8 * 8, 512, 4096);
   const int blocks = (count + block - 1) / block;
@@ -404,10 +425,10 @@ std::vector<Rgb> convolve(const Lines& lines, const std::vector<Vec3>& normals, 
 // rounding error (taking it the other way round, E(-n) = E(n) - n.M with n.M > 0, would cancel on the dark
 // side). A pair whose channels disagree in sign is convolved on both sides. antipode[i] is the index of
 // -normals[i], or -1.
-std::vector<Rgb> convolve_pairs(const Lines& lines, const std::vector<Vec3>& normals, const std::vector<int>& antipode,
+std::vector<Sums> convolve_pairs(const Lines& lines, const std::vector<Vec3>& normals, const std::vector<int>& antipode,
                                 const ProgressFn& progress) {
-  double m[3][3] = {};  // m[c] = M of channel c (x, y, z)
-  for (std::size_t c = 0; c < 3; ++c)
+  double m[channels][3] = {};  // m[c] = M of channel c (x, y, z)
+  for (std::size_t c = 0; c < static_cast<std::size_t>(channels); ++c)
     for (std::size_t k = 0; k < 3; ++k) m[c][k] = lines.first_moment[3 * c + k];
   const auto n_dot_m = [&](const Vec3& n, int c) { return n.x * m[c][0] + n.y * m[c][1] + n.z * m[c][2]; };
   const auto dark = [&](const Vec3& n) {
@@ -436,13 +457,15 @@ std::vector<Rgb> convolve_pairs(const Lines& lines, const std::vector<Vec3>& nor
       direct_index.push_back(i);
     }
   }
-  const std::vector<Rgb> e_direct = convolve(lines, direct, progress);
-  std::vector<Rgb> out(normals.size());
+  const std::vector<Sums> e_direct = convolve(lines, direct, progress);
+  std::vector<Sums> out(normals.size());
   for (std::size_t k = 0; k < direct.size(); ++k) out[direct_index[k]] = e_direct[k];
   for (std::size_t j = 0; j < normals.size(); ++j) {
     if (from[j] < 0) continue;
     const auto i = static_cast<std::size_t>(from[j]);
-    for (int c = 0; c < 3; ++c) out[j][c] = out[i][c] - n_dot_m(normals[i], c);  // n_i.M_c <= 0
+    // n_i.M_c <= 0 for R, G, B; W's M is the first moment of the texel layout, zero up to rounding (no
+    // cancellation either way), and W takes the same path as the colours, so a constant keeps S = L W.
+    for (int c = 0; c < channels; ++c) out[j][static_cast<std::size_t>(c)] = out[i][static_cast<std::size_t>(c)] - n_dot_m(normals[i], c);
   }
   return out;
 }
@@ -494,20 +517,30 @@ std::vector<Vec3> latlong_normals(int width, int height) {
   return n;
 }
 
-CubeMap to_cube(const std::vector<Rgb>& e, int size, double scale) {
+// E(n) (radiometric) or E(n) / pi (game) from the discrete sums: pi S / W or S / W. S / W is one division,
+// so a constant L, whose S(n) is L W(n), gives L exactly when L W(n) is exact (L a power of two such as 0.5:
+// every step scales exactly) and to float rounding of the prefix entries otherwise.
+Rgb normalise(const Sums& s, RadianceUnits units) {
+  const double w = s[3];
+  if (!(w > 0.0)) return Rgb{};  // no texel in n's hemisphere: S(n) = 0 too
+  const Rgb e{s[0] / w, s[1] / w, s[2] / w};
+  return units == RadianceUnits::game ? e : e * pi;
+}
+
+CubeMap to_cube(const std::vector<Sums>& s, int size, RadianceUnits units) {
   CubeMap out(size);
   std::size_t k = 0;
   for (int f = 0; f < 6; ++f)
     for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) out.set(f, x, y, e[k++] * scale);
+      for (int x = 0; x < size; ++x) out.set(f, x, y, normalise(s[k++], units));
   return out;
 }
 
-Image to_latlong(const std::vector<Rgb>& e, int width, int height, double scale) {
+Image to_latlong(const std::vector<Sums>& s, int width, int height, RadianceUnits units) {
   Image out(width, height);
   std::size_t k = 0;
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) out.set(x, y, e[k++] * scale);
+    for (int x = 0; x < width; ++x) out.set(x, y, normalise(s[k++], units));
   return out;
 }
 
@@ -525,20 +558,18 @@ Lines prepared_lines(const Image& latlong, int max_size) {
   return ring_lines(in);
 }
 
-double unit_scale(RadianceUnits units) { return units == RadianceUnits::game ? inv_pi : 1.0; }  // game: E / pi
-
 }  // namespace
 
 CubeMap irradiance_cube(const CubeMap& radiance, int size, RadianceUnits units, const ConvolveOptions& options) {
   const Lines lines = prepared_lines(radiance, options.max_input_size);
   const std::vector<Vec3> normals = cube_normals(size);
-  return to_cube(convolve_pairs(lines, normals, cube_antipodes(normals, size), options.progress), size, unit_scale(units));
+  return to_cube(convolve_pairs(lines, normals, cube_antipodes(normals, size), options.progress), size, units);
 }
 
 CubeMap irradiance_cube(const Image& latlong, int size, RadianceUnits units, const ConvolveOptions& options) {
   const Lines lines = prepared_lines(latlong, options.max_input_size);
   const std::vector<Vec3> normals = cube_normals(size);
-  return to_cube(convolve_pairs(lines, normals, cube_antipodes(normals, size), options.progress), size, unit_scale(units));
+  return to_cube(convolve_pairs(lines, normals, cube_antipodes(normals, size), options.progress), size, units);
 }
 
 Image irradiance_latlong(const CubeMap& radiance, int width, RadianceUnits units, const ConvolveOptions& options) {
@@ -546,7 +577,7 @@ Image irradiance_latlong(const CubeMap& radiance, int width, RadianceUnits units
   const Lines lines = prepared_lines(radiance, options.max_input_size);
   const std::vector<Vec3> normals = latlong_normals(width, height);
   return to_latlong(convolve_pairs(lines, normals, latlong_antipodes(normals, width, height), options.progress), width,
-                    height, unit_scale(units));
+                    height, units);
 }
 
 Image irradiance_latlong(const Image& latlong, int width, RadianceUnits units, const ConvolveOptions& options) {
@@ -554,7 +585,7 @@ Image irradiance_latlong(const Image& latlong, int width, RadianceUnits units, c
   const Lines lines = prepared_lines(latlong, options.max_input_size);
   const std::vector<Vec3> normals = latlong_normals(width, height);
   return to_latlong(convolve_pairs(lines, normals, latlong_antipodes(normals, width, height), options.progress), width,
-                    height, unit_scale(units));
+                    height, units);
 }
 
 }  // namespace shadelab
