@@ -44,7 +44,7 @@ std::vector<char> js_assignment(const std::string& lhs, const json& value) {
 // One lat-long map through the game renderer's bake (the environment of a scene {"environment": {"file":
 // path}}, scale 1), packed as env-NAME.js describes (site.h).
 Result<json> bake_environment(const std::string& name, const fs::path& file, int size) {
-  auto image = read_image(file);
+  auto image = read_radiance_image(file);  // NaN, Inf or negative: the map is skipped, named
   if (!image) return image.error();
   if (image->width != 2 * image->height) {
     return make_error("'" + file.string() + "' is " + std::to_string(image->width) + " x " + std::to_string(image->height) +

@@ -29,6 +29,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -96,14 +97,23 @@ const char* unknown_extension_reason() {
 }
 
 // Replaces NaN and +-Inf by 0 and counts them; counts negative values and keeps them.
+// The first of each is recorded (its texel and channel) before the repair.
 void repair_and_count(Image& image, ReadInfo& info) {
   int nonfinite = 0;
   int negative = 0;
-  for (float& v : image.data) {
+  const auto texel = [&](std::size_t i, float v) {
+    const std::size_t pixel = i / 3;
+    const std::size_t w = static_cast<std::size_t>(std::max(image.width, 1));
+    return ReadInfo::Texel{static_cast<int>(pixel % w), static_cast<int>(pixel / w), static_cast<int>(i % 3), v};
+  };
+  for (std::size_t i = 0; i < image.data.size(); ++i) {
+    float& v = image.data[i];
     if (!std::isfinite(v)) {
+      if (nonfinite == 0) info.first_nonfinite = texel(i, v);
       v = 0.0f;
       ++nonfinite;
     } else if (v < 0.0f) {
+      if (negative == 0) info.first_negative = texel(i, v);
       ++negative;
     }
   }
@@ -807,6 +817,36 @@ Result<bool> write_atomically(const fs::path& target, const std::vector<char>& b
 }  // namespace
 
 Result<Image> read_image(const fs::path& path, ReadInfo* info) { return read_image(path, info, image_read_budget_bytes); }
+
+Result<bool> check_radiance_read(const fs::path& path, const ReadInfo& info) {
+  static constexpr const char* channel_names[] = {"R", "G", "B"};
+  const auto where = [](const ReadInfo::Texel& t) {
+    return "texel (" + std::to_string(t.x) + ", " + std::to_string(t.y) + ") channel " +
+           channel_names[std::clamp(t.channel, 0, 2)];
+  };
+  if (info.nonfinite_repaired > 0) {
+    const float v = info.first_nonfinite.value;
+    return read_error(path, where(info.first_nonfinite) + " is " + (std::isnan(v) ? "NaN" : v > 0 ? "+Inf" : "-Inf") +
+                                " (" + std::to_string(info.nonfinite_repaired) +
+                                " non-finite values); radiance must be finite and not negative");
+  }
+  if (info.negative_values > 0) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%.9g", static_cast<double>(info.first_negative.value));
+    return read_error(path, where(info.first_negative) + " is " + value + " (" + std::to_string(info.negative_values) +
+                                " negative values); radiance must be finite and not negative");
+  }
+  return true;
+}
+
+Result<Image> read_radiance_image(const fs::path& path, ReadInfo* info, std::uint64_t budget_bytes) {
+  ReadInfo local;
+  auto image = read_image(path, &local, budget_bytes);
+  if (!image) return image;
+  if (auto ok = check_radiance_read(path, local); !ok) return ok.error();
+  if (info != nullptr) *info = local;
+  return image;
+}
 
 Result<Image> read_image(const fs::path& path, ReadInfo* info, std::uint64_t budget_bytes) {
   const std::uint64_t budget = std::min(budget_bytes, image_read_budget_bytes);

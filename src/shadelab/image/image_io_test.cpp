@@ -880,7 +880,44 @@ TEST_F(ImageIo, NonFiniteTexelsAreRepairedAndCounted) {
     for (float v : back->data) {
       ASSERT_TRUE(std::isfinite(v));
     }
+    // The first of each, as stored (issue 40): NaN at (1, 1) R, the negative at (7, 3) G.
+    EXPECT_EQ(info.first_nonfinite.x, 1);
+    EXPECT_EQ(info.first_nonfinite.y, 1);
+    EXPECT_EQ(info.first_nonfinite.channel, 0);
+    EXPECT_TRUE(std::isnan(info.first_nonfinite.value));
+    EXPECT_EQ(info.first_negative.x, 7);
+    EXPECT_EQ(info.first_negative.y, 3);
+    EXPECT_EQ(info.first_negative.channel, 1);
+    EXPECT_EQ(info.first_negative.value, -0.5f);
   }
+}
+
+// Radiance (an environment map) is finite and not negative: read_radiance_image refuses the first texel that
+// is not, naming the file, the texel and the channel (issue 40); a clean file reads as read_image reads it.
+TEST_F(ImageIo, RadianceReadsRefuseNegativeAndNonFiniteTexels) {
+  Image image(8, 4);
+  for (float& v : image.data) v = 0.5f;
+  image.set(6, 2, {0.5, 0.5, -1e-3});
+  const fs::path neg = path("negative.exr");
+  ASSERT_TRUE(write_image(image, neg));
+  const Result<Image> a = read_radiance_image(neg);
+  ASSERT_FALSE(a);
+  EXPECT_NE(a.error().message.find("negative.exr': texel (6, 2) channel B is -0.001 (1 negative values)"),
+            std::string::npos) << a.error().message;
+  image.set(6, 2, {0.5, -INFINITY, 0.5});
+  const fs::path inf = path("inf.exr");
+  ASSERT_TRUE(write_image(image, inf));
+  const Result<Image> b = read_radiance_image(inf);
+  ASSERT_FALSE(b);
+  EXPECT_NE(b.error().message.find("inf.exr': texel (6, 2) channel G is -Inf"), std::string::npos) << b.error().message;
+  image.set(6, 2, {0.0, 0.0, 0.0});  // black is light
+  const fs::path ok = path("ok.exr");
+  ASSERT_TRUE(write_image(image, ok));
+  ReadInfo info;
+  const Result<Image> c = read_radiance_image(ok, &info);
+  ASSERT_TRUE(c) << c.error().message;
+  EXPECT_EQ(c->data, read_image(ok).value().data);
+  EXPECT_EQ(info.format, "exr");
 }
 
 // ------------------------------------------------------------------------------------------- atomic write
