@@ -222,7 +222,7 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
   if (scene.environment.kind == Environment::Kind::image) {
     // Before any render: a black map has no signal anywhere (the cells would all be refused below).
     const auto& d = scene.environment.latlong.data;
-    if (std::none_of(d.begin(), d.end(), [](float v) { return v > 0.0f; })) {
+    if (std::none_of(d.begin(), d.end(), [](float t) { return t > 0.0f; })) {
       return make_error("ibl-error: " + source() + ": every texel is 0 or less; a black environment gives no signal "
                         "to measure an error against");
     }
