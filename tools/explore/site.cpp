@@ -225,7 +225,9 @@ int read_head(int fd, std::string& head) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(head_deadline_ms);
   char buf[2048];
   for (;;) {
-    if (head.find("\r\n\r\n") != std::string::npos || head.find("\n\n") != std::string::npos) return 0;
+    // The end of the head (a bare LF line end is taken too); the bound is on the head, not on a body after it.
+    const std::size_t end = std::min(head.find("\r\n\r\n"), head.find("\n\n"));
+    if (end != std::string::npos) return end > max_head_bytes ? 431 : 0;
     if (head.size() > max_head_bytes) return 431;
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) return 408;
