@@ -818,11 +818,16 @@ Result<bool> write_atomically(const fs::path& target, const std::vector<char>& b
 
 Result<Image> read_image(const fs::path& path, ReadInfo* info) { return read_image(path, info, image_read_budget_bytes); }
 
-Result<bool> check_radiance_read(const fs::path& path, const ReadInfo& info) {
+Result<bool> check_radiance(const fs::path& path, const Image& image, const ReadInfo& info) {
   static constexpr const char* channel_names[] = {"R", "G", "B"};
   const auto where = [](const ReadInfo::Texel& t) {
     return "texel (" + std::to_string(t.x) + ", " + std::to_string(t.y) + ") channel " +
            channel_names[std::clamp(t.channel, 0, 2)];
+  };
+  const auto number = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", v);
+    return std::string(text);
   };
   if (info.nonfinite_repaired > 0) {
     const float v = info.first_nonfinite.value;
@@ -830,11 +835,20 @@ Result<bool> check_radiance_read(const fs::path& path, const ReadInfo& info) {
                                 " (" + std::to_string(info.nonfinite_repaired) +
                                 " non-finite values); radiance must be finite and not negative");
   }
-  if (info.negative_values > 0) {
-    char value[32];
-    std::snprintf(value, sizeof value, "%.9g", static_cast<double>(info.first_negative.value));
-    return read_error(path, where(info.first_negative) + " is " + value + " (" + std::to_string(info.negative_values) +
-                                " negative values); radiance must be finite and not negative");
+  if (info.negative_values == 0) return true;
+  double sum = 0.0;
+  for (const float v : image.data) sum += static_cast<double>(v);
+  const double mean = image.data.empty() ? 0.0 : sum / static_cast<double>(image.data.size());
+  const double floor = -radiance_negative_tolerance * std::max(mean, 0.0);
+  const std::size_t w = static_cast<std::size_t>(std::max(image.width, 1));
+  for (std::size_t i = 0; i < image.data.size(); ++i) {
+    const double v = static_cast<double>(image.data[i]);
+    if (!(v < floor) && !(v < 0.0 && mean <= 0.0)) continue;
+    const ReadInfo::Texel t{static_cast<int>((i / 3) % w), static_cast<int>((i / 3) / w), static_cast<int>(i % 3),
+                            image.data[i]};
+    return read_error(path, where(t) + " is " + number(v) + ", below -" + number(radiance_negative_tolerance) +
+                                " x the map's mean value " + number(mean) +
+                                " (the most lossy compression leaves); radiance must be finite and not negative");
   }
   return true;
 }
@@ -843,7 +857,7 @@ Result<Image> read_radiance_image(const fs::path& path, ReadInfo* info, std::uin
   ReadInfo local;
   auto image = read_image(path, &local, budget_bytes);
   if (!image) return image;
-  if (auto ok = check_radiance_read(path, local); !ok) return ok.error();
+  if (auto ok = check_radiance(path, *image, local); !ok) return ok.error();
   if (info != nullptr) *info = local;
   return image;
 }
