@@ -148,7 +148,7 @@ std::string receive_all(int fd) {
 }
 
 // Sends `request` as it is and returns the whole answer.
-std::string exchange(int port, const std::string& request) {
+std::string send_request(int port, const std::string& request) {
   const int fd = connect_to(port);
   if (fd < 0) return "(refused)";
   ::send(fd, request.data(), request.size(), MSG_NOSIGNAL);
@@ -158,7 +158,7 @@ std::string exchange(int port, const std::string& request) {
 }
 
 std::string http_get(int port, const std::string& target, const std::string& method = "GET") {
-  return exchange(port, method + " " + target + " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n\r\n");
+  return send_request(port, method + " " + target + " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n\r\n");
 }
 
 std::string status_line(const std::string& response) { return response.substr(0, response.find("\r\n")); }
@@ -212,12 +212,12 @@ TEST_F(CliServe, ServesTheSiteOnLoopback) {
   EXPECT_EQ(wasm.size() - wasm.find("\r\n\r\n") - 4, std::filesystem::file_size(m_dir / "shadelab_wasm.js"));
   EXPECT_EQ(status_line(http_get(m_port, "/missing.html")), "HTTP/1.1 404 Not Found");
   // The Host of a page from another name (DNS rebinding) or none with HTTP/1.1: 400; localhost is this server.
-  EXPECT_EQ(status_line(exchange(m_port, "GET / HTTP/1.1\r\nHost: evil.example\r\n\r\n")), "HTTP/1.1 400 Bad Request");
-  EXPECT_EQ(status_line(exchange(m_port, "GET / HTTP/1.1\r\nHost: 127.0.0.1:1\r\n\r\n")), "HTTP/1.1 400 Bad Request");
-  EXPECT_EQ(status_line(exchange(m_port, "GET / HTTP/1.1\r\n\r\n")), "HTTP/1.1 400 Bad Request");
-  EXPECT_EQ(status_line(exchange(m_port, "GET / HTTP/1.1\r\nHost: localhost:" + std::to_string(m_port) + "\r\n\r\n")),
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.1\r\nHost: evil.example\r\n\r\n")), "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.1\r\nHost: 127.0.0.1:1\r\n\r\n")), "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.1\r\n\r\n")), "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.1\r\nHost: localhost:" + std::to_string(m_port) + "\r\n\r\n")),
             "HTTP/1.1 200 OK");
-  EXPECT_EQ(status_line(exchange(m_port, "GET / HTTP/1.0\r\n\r\n")), "HTTP/1.1 200 OK");
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.0\r\n\r\n")), "HTTP/1.1 200 OK");
 }
 
 // Before issue 40 each of these ended the server with exit 3 ("internal error: basic_string::substr").
@@ -227,13 +227,13 @@ TEST_F(CliServe, MalformedRequestsGet400AndTheServerGoesOn) {
                                     "GET /%zz HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n", "GET /%2 HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n",
                                     "GET / HTTP/1.1\r\nno colon\r\n\r\n"}) {
     SCOPED_TRACE(request);
-    EXPECT_EQ(status_line(exchange(m_port, request)), "HTTP/1.1 400 Bad Request");
+    EXPECT_EQ(status_line(send_request(m_port, request)), "HTTP/1.1 400 Bad Request");
     ASSERT_TRUE(alive());
   }
   EXPECT_EQ(status_line(http_get(m_port, "/")), "HTTP/1.1 200 OK");
   // Heads beyond the bounds: a request line over 2 KiB, a head over 8 KiB.
   EXPECT_EQ(status_line(http_get(m_port, "/" + std::string(3000, 'a'))), "HTTP/1.1 414 URI Too Long");
-  EXPECT_EQ(status_line(exchange(m_port, "GET / HTTP/1.1\r\nHost: 127.0.0.1\r\nX: " + std::string(9000, 'x') + "\r\n\r\n")),
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.1\r\nHost: 127.0.0.1\r\nX: " + std::string(9000, 'x') + "\r\n\r\n")),
             "HTTP/1.1 431 Request Header Fields Too Large");
   EXPECT_TRUE(alive());
 }
@@ -306,7 +306,7 @@ TEST_F(CliServe, HeadAnswersAndOtherMethodsGet405) {
     EXPECT_NE(r.find("Allow: GET, HEAD\r\n"), std::string::npos) << r;
   }
   // A POST with a body it never reads still gets its whole answer.
-  const std::string post = exchange(m_port, "POST / HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 10000\r\n\r\n" +
+  const std::string post = send_request(m_port, "POST / HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 10000\r\n\r\n" +
                                                 std::string(10000, 'b'));
   EXPECT_EQ(status_line(post), "HTTP/1.1 405 Method Not Allowed");
 }

@@ -89,7 +89,7 @@ TEST(CliRadiance, NegativeOrNonFiniteTexelsAreErrorsNamingTheTexel) {
   expect_usage_error("ibl-error " + nan.string() + quick + " --out " + (temp_dir() / "nan_ibl").string(),
                      "texel (5, 3) channel G is NaN");
   const fs::path inf = one_bad_texel("inf.exr", INFINITY);
-  expect_usage_error("bake irradiance " + inf.string() + " --size 4 --out " + (temp_dir() / "inf.exr").string(),
+  expect_usage_error("bake irradiance " + inf.string() + " --size 4 --out " + (temp_dir() / "inf_irr.exr").string(),
                      "texel (5, 3) channel G is +Inf");
   expect_usage_error("render " + scene_with_environment(inf, "inf_scene.json").string() + " --spp 1 --out " +
                          (temp_dir() / "inf_render.exr").string(),
