@@ -121,7 +121,7 @@ TEST(CliExplore, FlagErrors) {
 // ---------------------------------------------------------------------------------------- explore --serve
 // The served site against any local process as a client (issue 40): each test starts its own server
 // (`explore --serve --port 0`, no HDRIs to bake) and kills it at the end; every client socket has a 3 s
-// receive timeout, so a server that stops answering fails the test instead of hanging it.
+// connect, send and receive timeout, so a server that stops answering fails the test instead of hanging it.
 
 // Connects to addr:port; -1 when refused.
 int connect_to(int port, const char* addr = "127.0.0.1") {
@@ -132,6 +132,7 @@ int connect_to(int port, const char* addr = "127.0.0.1") {
   ::inet_pton(AF_INET, addr, &a.sin_addr);
   const timeval timeout{3, 0};
   ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &timeout, sizeof timeout);  // bounds connect() too (a full backlog)
   if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
     ::close(fd);
     return -1;
