@@ -925,7 +925,7 @@ TEST_F(ImageIo, RadianceReadsRefuseNegativeAndNonFiniteTexels) {
   const Result<Image> d = read_radiance_image(dark_path);
   ASSERT_FALSE(d);
   EXPECT_NE(d.error().message.find("texel (3, 1) channel B is -1e-06"), std::string::npos) << d.error().message;
-  image.set(6, 2, {0.5, -INFINITY, 0.5});
+  image.set(6, 2, {0.5, -std::numeric_limits<double>::infinity(), 0.5});
   const fs::path inf = path("inf.exr");
   ASSERT_TRUE(write_image(image, inf));
   const Result<Image> b = read_radiance_image(inf);
