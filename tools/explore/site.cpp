@@ -1,13 +1,23 @@
 #include "site.h"
 
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
+#include <cctype>
+#include <cerrno>
 #include <chrono>
+#include <string_view>
+#include <thread>
+#include <vector>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -44,7 +54,7 @@ std::vector<char> js_assignment(const std::string& lhs, const json& value) {
 // One lat-long map through the game renderer's bake (the environment of a scene {"environment": {"file":
 // path}}, scale 1), packed as env-NAME.js describes (site.h).
 Result<json> bake_environment(const std::string& name, const fs::path& file, int size) {
-  auto image = read_image(file);
+  auto image = read_radiance_image(file);  // NaN, Inf or negative: the map is skipped, named
   if (!image) return image.error();
   if (image->width != 2 * image->height) {
     return make_error("'" + file.string() + "' is " + std::to_string(image->width) + " x " + std::to_string(image->height) +
@@ -170,79 +180,303 @@ std::string_view content_type(std::string_view name) {
 
 namespace {
 
-void send_all(int fd, const std::string& data) {
+// The server's bounds (site.h): a request head (request line and headers) of at most max_head_bytes, the
+// request line at most max_request_line_bytes, the whole head within head_deadline (and no gap between its
+// bytes longer than idle_timeout: an idle or trickling connection is answered 408 and closed), at most
+// max_connections served at once (each on its own thread; one more is answered 503 at once), and each
+// response sent within send_timeout per write.
+constexpr std::size_t max_head_bytes = 8192;
+constexpr std::size_t max_request_line_bytes = 2048;
+constexpr int idle_timeout_ms = 5000;
+constexpr int head_deadline_ms = 10000;
+constexpr int send_timeout_s = 10;
+constexpr int max_connections = 32;
+
+void send_all(int fd, std::string_view data) {
   std::size_t sent = 0;
   while (sent < data.size()) {
     const ssize_t n = ::send(fd, data.data() + sent, data.size() - sent, MSG_NOSIGNAL);
-    if (n <= 0) return;  // the client went away
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;  // the client went away, or the send timed out
     sent += static_cast<std::size_t>(n);
   }
 }
 
-std::string response(int status, std::string_view reason, std::string_view type, const std::string& body, bool head) {
-  std::ostringstream os;
-  os << "HTTP/1.1 " << status << " " << reason << "\r\nContent-Type: " << type << "\r\nContent-Length: " << body.size()
-     << "\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n";
-  if (!head) os << body;
-  return os.str();
+std::string head_of(int status, std::string_view reason, std::string_view type, std::uint64_t length,
+                    std::string_view extra = {}) {
+  std::string h = "HTTP/1.1 " + std::to_string(status) + " " + std::string(reason) + "\r\nContent-Type: " +
+                  std::string(type) + "\r\nContent-Length: " + std::to_string(length) +
+                  "\r\nCache-Control: no-store\r\nX-Content-Type-Options: nosniff\r\nConnection: close\r\n";
+  h += extra;
+  h += "\r\n";
+  return h;
 }
 
-void answer(int fd, const fs::path& dir) {
-  std::string request;
-  char buf[4096];
-  while (request.find("\r\n\r\n") == std::string::npos && request.size() < 65536) {
+void send_status(int fd, int status, std::string_view reason, std::string_view body, bool head,
+                 std::string_view extra = {}) {
+  std::string r = head_of(status, reason, "text/plain; charset=utf-8", body.size(), extra);
+  if (!head) r += body;
+  send_all(fd, r);
+}
+
+// Reads the request head (up to the blank line) within the bounds above. Returns 0 and the head, or the
+// status to answer with (408, 413 for a head beyond the bound), or -1 when the client closed the connection.
+int read_head(int fd, std::string& head) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(head_deadline_ms);
+  char buf[2048];
+  for (;;) {
+    // The end of the head (a bare LF line end is taken too); the bound is on the head, not on a body after it.
+    const std::size_t end = std::min(head.find("\r\n\r\n"), head.find("\n\n"));
+    if (end != std::string::npos) return end > max_head_bytes ? 431 : 0;
+    if (head.size() > max_head_bytes) return 431;
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return 408;
+    pollfd p{fd, POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), idle_timeout_ms)));
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) return 408;  // idle for idle_timeout_ms (or the deadline passed)
     const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
-    if (n <= 0) return;
-    request.append(buf, static_cast<std::size_t>(n));
+    if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+    if (n <= 0) return -1;
+    head.append(buf, static_cast<std::size_t>(n));
   }
-  std::istringstream line(request.substr(0, request.find("\r\n")));
-  std::string method, target;
-  line >> method >> target;
-  const bool head = method == "HEAD";
-  if (method != "GET" && !head) {
-    send_all(fd, response(405, "Method Not Allowed", "text/plain", "only GET and HEAD\n", false));
+}
+
+bool is_token_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) != 0 || std::string_view("!#$%&'*+-.^_`|~").find(c) != std::string_view::npos;
+}
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+struct Request {
+  int status = 0;  // 0: a request to answer; else the error status
+  std::string reason;
+  std::string method;
+  std::string path;  // percent-decoded, without query
+};
+
+Request bad(int status, std::string reason) {
+  Request r;
+  r.status = status;
+  r.reason = std::move(reason);
+  return r;
+}
+
+// The request line and the headers, without anything that can throw on malformed input (string_view finds
+// and compares only): "METHOD SP /TARGET SP HTTP/1.x", then "Name: value" lines; HTTP/1.1 needs a Host of
+// 127.0.0.1 or localhost, with this server's port if it has one (a page from another name, as by DNS
+// rebinding, gets 400).
+Request parse_request(std::string_view head, int port) {
+  const std::size_t eol = head.find('\n');
+  std::string_view line = head.substr(0, eol);
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  if (line.size() > max_request_line_bytes) return bad(414, "URI Too Long");
+  const std::size_t sp1 = line.find(' ');
+  if (sp1 == std::string_view::npos || sp1 == 0) return bad(400, "Bad Request");
+  const std::size_t sp2 = line.find(' ', sp1 + 1);
+  if (sp2 == std::string_view::npos || line.find(' ', sp2 + 1) != std::string_view::npos) return bad(400, "Bad Request");
+  const std::string_view method = line.substr(0, sp1);
+  const std::string_view target = line.substr(sp1 + 1, sp2 - sp1 - 1);
+  const std::string_view version = line.substr(sp2 + 1);
+  if (!std::all_of(method.begin(), method.end(), is_token_char)) return bad(400, "Bad Request");
+  if (version != "HTTP/1.1" && version != "HTTP/1.0") return bad(400, "Bad Request");
+  if (target.empty() || target.front() != '/') return bad(400, "Bad Request");
+  for (const char c : target) {
+    if (static_cast<unsigned char>(c) <= 0x20 || c == 0x7f) return bad(400, "Bad Request");
+  }
+  // Headers: each "name: value"; Host once.
+  std::string_view rest = eol == std::string_view::npos ? std::string_view() : head.substr(eol + 1);
+  int hosts = 0;
+  std::string_view host;
+  while (!rest.empty()) {
+    const std::size_t e = rest.find('\n');
+    std::string_view h = rest.substr(0, e);
+    rest = e == std::string_view::npos ? std::string_view() : rest.substr(e + 1);
+    if (!h.empty() && h.back() == '\r') h.remove_suffix(1);
+    if (h.empty()) break;
+    const std::size_t colon = h.find(':');
+    if (colon == std::string_view::npos || colon == 0) return bad(400, "Bad Request");
+    const std::string_view name = h.substr(0, colon);
+    if (!std::all_of(name.begin(), name.end(), is_token_char)) return bad(400, "Bad Request");
+    std::string_view value = h.substr(colon + 1);
+    while (!value.empty() && (value.front() == ' ' || value.front() == '\t')) value.remove_prefix(1);
+    while (!value.empty() && (value.back() == ' ' || value.back() == '\t')) value.remove_suffix(1);
+    const bool is_host = name.size() == 4 && std::equal(name.begin(), name.end(), "host", [](char a, char b) {
+                           return std::tolower(static_cast<unsigned char>(a)) == b;
+                         });
+    if (is_host) {
+      ++hosts;
+      host = value;
+    }
+  }
+  if (hosts > 1 || (hosts == 0 && version == "HTTP/1.1")) return bad(400, "Bad Request");
+  if (hosts == 1) {
+    const std::string with_port = ":" + std::to_string(port);
+    std::string_view name = host;
+    if (name.size() > with_port.size() && name.substr(name.size() - with_port.size()) == with_port) {
+      name.remove_suffix(with_port.size());
+    }
+    if (name != "127.0.0.1" && name != "localhost") return bad(400, "Bad Request");
+  }
+  if (method != "GET" && method != "HEAD") return bad(405, "Method Not Allowed");
+  // The path: up to '?' (a fragment is never sent, but '#' ends it too), percent-decoded.
+  const std::string_view raw = target.substr(0, target.find_first_of("?#"));
+  std::string path;
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    if (raw[i] != '%') {
+      path += raw[i];
+      continue;
+    }
+    if (i + 2 >= raw.size() || hex_value(raw[i + 1]) < 0 || hex_value(raw[i + 2]) < 0) return bad(400, "Bad Request");
+    path += static_cast<char>(hex_value(raw[i + 1]) * 16 + hex_value(raw[i + 2]));
+    i += 2;
+  }
+  Request r;
+  r.method = std::string(method);
+  r.path = std::move(path);
+  return r;
+}
+
+// The file name a decoded path asks for, or "" for 404: "/" is index.html; otherwise "/NAME" with NAME of
+// [A-Za-z0-9._-], not starting with '.' (no dotfiles, no "..", no folders: the site is flat).
+std::string site_file_name(const std::string& path) {
+  if (path == "/") return "index.html";
+  if (path.size() < 2 || path.size() > 256 || path.front() != '/') return {};
+  const std::string name = path.substr(1);
+  if (name.front() == '.') return {};
+  for (const char c : name) {
+    if (std::isalnum(static_cast<unsigned char>(c)) == 0 && c != '.' && c != '_' && c != '-') return {};
+  }
+  return name;
+}
+
+// Ends a connection after the response: our side first (FIN), then what the client still sends (a body we did
+// not read, at most 64 KiB within 200 ms) is read and dropped, so the close sends no RST that could cut the
+// response short on the client's side.
+void close_gracefully(int fd) {
+  ::shutdown(fd, SHUT_WR);
+  char buf[4096];
+  std::size_t drained = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
+  while (drained < 65536) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    pollfd p{fd, POLLIN, 0};
+    if (left.count() <= 0 || ::poll(&p, 1, static_cast<int>(left.count())) <= 0) break;
+    const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
+    if (n <= 0) break;
+    drained += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+}
+
+void answer(int fd, int dir_fd, int port) {
+  std::string head;
+  const int got = read_head(fd, head);
+  if (got < 0) return;
+  if (got == 408) {
+    send_status(fd, 408, "Request Timeout", "request timeout\n", false);
     return;
   }
-  std::string name = target.substr(0, target.find_first_of("?#"));
-  if (name == "/") name = "/index.html";
-  name = name.substr(1);
-  if (name.empty() || name.find('/') != std::string::npos || name.find("..") != std::string::npos) {
-    send_all(fd, response(404, "Not Found", "text/plain", "not found\n", head));
+  if (got == 431) {
+    send_status(fd, 431, "Request Header Fields Too Large", "request head too large\n", false);
     return;
   }
-  std::ifstream in(dir / name, std::ios::binary);
-  if (!in) {
-    send_all(fd, response(404, "Not Found", "text/plain", "not found\n", head));
+  const Request req = parse_request(head, port);
+  if (req.status == 405) {
+    send_status(fd, 405, req.reason, "only GET and HEAD\n", false, "Allow: GET, HEAD\r\n");
     return;
   }
-  std::ostringstream body;
-  body << in.rdbuf();
-  send_all(fd, response(200, "OK", content_type(name), body.str(), head));
+  if (req.status != 0) {
+    send_status(fd, req.status, req.reason, req.reason + "\n", false);
+    return;
+  }
+  const bool head_only = req.method == "HEAD";
+  const std::string name = site_file_name(req.path);
+  // The file directly in the site folder, not a symbolic link (O_NOFOLLOW), a regular file (fstat).
+  const int file = name.empty() ? -1 : ::openat(dir_fd, name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
+  struct stat st {};
+  if (file < 0 || ::fstat(file, &st) != 0 || !S_ISREG(st.st_mode)) {
+    if (file >= 0) ::close(file);
+    send_status(fd, 404, "Not Found", "not found\n", head_only);
+    return;
+  }
+  send_all(fd, head_of(200, "OK", content_type(name), static_cast<std::uint64_t>(st.st_size)));
+  if (!head_only) {
+    // Streamed: memory per connection stays one buffer, whatever the file's size.
+    std::vector<char> buf(65536);
+    std::uint64_t left = static_cast<std::uint64_t>(st.st_size);
+    while (left > 0) {
+      const ssize_t n = ::read(file, buf.data(), std::min<std::uint64_t>(left, buf.size()));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;  // the file shrank: the client sees a short body and the close
+      send_all(fd, std::string_view(buf.data(), static_cast<std::size_t>(n)));
+      left -= static_cast<std::uint64_t>(n);
+    }
+  }
+  ::close(file);
 }
 
 }  // namespace
 
 Result<bool> serve_site(const fs::path& dir, int port, const std::function<void(int)>& on_ready) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  if (fd < 0) return make_error("--serve: cannot open a socket");
+  const int dir_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir_fd < 0) return make_error("--serve: cannot open the folder '" + dir.string() + "'");
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) {
+    ::close(dir_fd);
+    return make_error("--serve: cannot open a socket");
+  }
   const int yes = 1;
   ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
   addr.sin_port = htons(static_cast<std::uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 || ::listen(fd, 16) != 0) {
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);  // 127.0.0.1 only: nothing off this machine can connect
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 || ::listen(fd, 64) != 0) {
     ::close(fd);
+    ::close(dir_fd);
     return make_error("--port: cannot listen on 127.0.0.1:" + std::to_string(port) + " (in use?)");
   }
   socklen_t len = sizeof addr;
   ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
-  on_ready(ntohs(addr.sin_port));
+  const int bound_port = ntohs(addr.sin_port);
+  on_ready(bound_port);
+  // Each connection on its own detached thread, at most max_connections at once; the count lives as long as
+  // the process (serve_site never returns once listening).
+  static std::atomic<int> active{0};
   for (;;) {
-    const int client = ::accept(fd, nullptr, nullptr);
-    if (client < 0) continue;
-    answer(client, dir);
-    ::close(client);
+    const int client = ::accept4(fd, nullptr, nullptr, SOCK_CLOEXEC);
+    if (client < 0) {
+      if (errno != EINTR) std::this_thread::sleep_for(std::chrono::milliseconds(10));  // EMFILE and the like
+      continue;
+    }
+    const timeval send_timeout{send_timeout_s, 0};
+    ::setsockopt(client, SOL_SOCKET, SO_SNDTIMEO, &send_timeout, sizeof send_timeout);
+    if (active.fetch_add(1) >= max_connections) {
+      active.fetch_sub(1);
+      send_status(client, 503, "Service Unavailable", "too many connections\n", false);
+      close_gracefully(client);
+      continue;
+    }
+    try {
+      std::thread([client, dir_fd, bound_port] {
+        try {
+          answer(client, dir_fd, bound_port);
+        } catch (...) {  // out of memory for a buffer: this connection ends, the server goes on
+        }
+        close_gracefully(client);
+        active.fetch_sub(1);
+      }).detach();
+    } catch (...) {  // no thread to be had: refuse this one
+      active.fetch_sub(1);
+      send_status(client, 503, "Service Unavailable", "too many connections\n", false);
+      ::close(client);
+    }
   }
 }
 

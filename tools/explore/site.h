@@ -19,10 +19,18 @@
 //   the radiance cube, block 1 + i the chain's level i; face f of a block is the rows row + f size .. row +
 //   (f + 1) size - 1, its texels the first size columns), texels (base64 of width x height RGB float32,
 //   little-endian, row-major, unused texels 0)}; environments.js sets window.shadelabEnvironments.
-// - serve_site(dir, port, on_ready): listens on 127.0.0.1:port (0 picks a free port), calls on_ready(port)
-//   once listening, then answers GET and HEAD requests for the files directly in dir ("/" is index.html)
-//   until the process ends; other paths get 404, other methods 405. Returns an Error when the port cannot be
-//   bound. One request at a time; no path outside dir is ever read (no '/' or ".." inside a name).
+// - serve_site(dir, port, on_ready): listens on 127.0.0.1:port only (0 picks a free port), calls
+//   on_ready(port) once listening, then answers GET and HEAD requests for the regular files directly in dir
+//   ("/" is index.html) until the process ends. Returns an Error when the folder cannot be opened or the port
+//   cannot be bound. Hardened for any local process as a client (issue 40): the request line is parsed
+//   without anything that can throw (malformed: 400; the server goes on); HTTP/1.1 needs a Host of 127.0.0.1
+//   or localhost (with this port, if any), else 400 (DNS rebinding); methods other than GET and HEAD get 405
+//   with Allow; the path is percent-decoded and must then be "/" or "/NAME" with NAME of [A-Za-z0-9._-] not
+//   starting with '.', opened in dir with O_NOFOLLOW and a regular file, else 404 (no traversal, no encoded
+//   dots, no dotfiles, no symbolic links, no folders); a request head beyond 8 KiB gets 431, a request line
+//   beyond 2 KiB 414; a connection idle for 5 s, or without a whole head within 10 s, gets 408 and is closed;
+//   connections are served at once, each on its own thread, at most 32 at a time (one more gets 503); a
+//   file is streamed in 64 KiB pieces; every response closes its connection.
 #pragma once
 
 #include <filesystem>

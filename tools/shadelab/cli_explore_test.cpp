@@ -6,8 +6,11 @@
 #include <signal.h>
 #include <sys/socket.h>
 
+#include <sys/time.h>
+
 #include <chrono>
 #include <thread>
+#include <vector>
 
 #include "cli_run.h"
 
@@ -115,55 +118,209 @@ TEST(CliExplore, FlagErrors) {
   EXPECT_NE(blocked.err.find(file.string()), std::string::npos) << blocked.err;
 }
 
-std::string http_get(int port, const std::string& target) {
+// ---------------------------------------------------------------------------------------- explore --serve
+// The served site against any local process as a client (issue 40): each test starts its own server
+// (`explore --serve --port 0`, no HDRIs to bake) and kills it at the end; every client socket has a 3 s
+// connect, send and receive timeout, so a server that stops answering fails the test instead of hanging it.
+
+// Connects to addr:port; -1 when refused.
+int connect_to(int port, const char* addr = "127.0.0.1") {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in a{};
   a.sin_family = AF_INET;
   a.sin_port = htons(static_cast<std::uint16_t>(port));
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::inet_pton(AF_INET, addr, &a.sin_addr);
+  const timeval timeout{3, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &timeout, sizeof timeout);  // bounds connect() too (a full backlog)
   if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
     ::close(fd);
-    return {};
+    return -1;
   }
-  const std::string req = "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
-  ::send(fd, req.data(), req.size(), 0);
+  return fd;
+}
+
+// Everything the server sends until it closes (or 3 s of silence).
+std::string receive_all(int fd) {
   std::string out;
   char buf[65536];
   for (ssize_t n; (n = ::recv(fd, buf, sizeof buf, 0)) > 0;) out.append(buf, static_cast<std::size_t>(n));
+  return out;
+}
+
+// Sends `request` as it is and returns the whole answer.
+std::string send_request(int port, const std::string& request) {
+  const int fd = connect_to(port);
+  if (fd < 0) return "(refused)";
+  ::send(fd, request.data(), request.size(), MSG_NOSIGNAL);
+  std::string out = receive_all(fd);
   ::close(fd);
   return out;
 }
 
-TEST(CliExplore, ServesTheSiteOnLoopback) {
-  const auto dir = process_temp_dir("explore_serve") / "site";
-  const std::string out_file = (dir.parent_path() / "out.txt").string();
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const std::string out = "--out=" + dir.string();
-    ::freopen(out_file.c_str(), "w", stdout);
-    ::execl(SHADELAB_EXE, SHADELAB_EXE, "explore", "--serve", "--port", "0", out.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
+std::string http_get(int port, const std::string& target, const std::string& method = "GET") {
+  return send_request(port, method + " " + target + " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n\r\n");
+}
+
+std::string status_line(const std::string& response) { return response.substr(0, response.find("\r\n")); }
+
+class CliServe : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    m_dir = process_temp_dir("explore_serve") / "site";
+    const std::string out_file = (m_dir.parent_path() / "out.txt").string();
+    const std::string env_dir = (m_dir.parent_path() / "no-hdris").string();
+    m_pid = ::fork();
+    ASSERT_GE(m_pid, 0);
+    if (m_pid == 0) {
+      const std::string out = "--out=" + m_dir.string();
+      const std::string env = "--env-dir=" + env_dir;
+      if (::freopen(out_file.c_str(), "w", stdout) == nullptr) ::_exit(126);
+      ::execl(SHADELAB_EXE, SHADELAB_EXE, "explore", "--serve", "--port", "0", out.c_str(), env.c_str(),
+              static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    for (int i = 0; i < 300 && m_port == 0; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      const std::string text = read_all(out_file);
+      const auto at = text.find("http://127.0.0.1:");
+      if (at != std::string::npos && text.find('/', at + 17) != std::string::npos) m_port = std::stoi(text.substr(at + 17));
+    }
+    ASSERT_GT(m_port, 0) << read_all(out_file);
   }
-  int port = 0;
-  for (int i = 0; i < 200 && port == 0; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    const std::string text = read_all(out_file);
-    const auto at = text.find("http://127.0.0.1:");
-    if (at != std::string::npos && text.find('/', at + 17) != std::string::npos) port = std::stoi(text.substr(at + 17));
+  void TearDown() override {
+    if (m_pid > 0) {
+      ::kill(m_pid, SIGKILL);
+      ::waitpid(m_pid, nullptr, 0);
+    }
   }
-  ASSERT_GT(port, 0) << read_all(out_file);
-  const std::string index = http_get(port, "/");
+  // The server process has not exited.
+  bool alive() const { return ::waitpid(m_pid, nullptr, WNOHANG) == 0; }
+
+  std::filesystem::path m_dir;
+  pid_t m_pid = -1;
+  int m_port = 0;
+};
+
+TEST_F(CliServe, ServesTheSiteOnLoopback) {
+  const std::string index = http_get(m_port, "/");
   EXPECT_EQ(index.rfind("HTTP/1.1 200 OK\r\n", 0), 0u) << index.substr(0, 200);
   EXPECT_NE(index.find("Content-Type: text/html"), std::string::npos);
-  EXPECT_NE(index.find(read_all(dir / "index.html")), std::string::npos);
-  const std::string js = http_get(port, "/explorer.js?x=1");
+  EXPECT_NE(index.find(read_all(m_dir / "index.html")), std::string::npos);
+  const std::string js = http_get(m_port, "/explorer.js?x=1");
   EXPECT_NE(js.find("Content-Type: text/javascript"), std::string::npos);
-  EXPECT_EQ(http_get(port, "/../etc/passwd").rfind("HTTP/1.1 404", 0), 0u);
-  EXPECT_EQ(http_get(port, "/missing.html").rfind("HTTP/1.1 404", 0), 0u);
-  ::kill(pid, SIGTERM);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  const std::string wasm = http_get(m_port, "/shadelab_wasm.js");  // streamed, megabytes
+  EXPECT_EQ(wasm.size() - wasm.find("\r\n\r\n") - 4, std::filesystem::file_size(m_dir / "shadelab_wasm.js"));
+  EXPECT_EQ(status_line(http_get(m_port, "/missing.html")), "HTTP/1.1 404 Not Found");
+  // The Host of a page from another name (DNS rebinding) or none with HTTP/1.1: 400; localhost is this server.
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.1\r\nHost: evil.example\r\n\r\n")), "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.1\r\nHost: 127.0.0.1:1\r\n\r\n")), "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.1\r\n\r\n")), "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.1\r\nHost: localhost:" + std::to_string(m_port) + "\r\n\r\n")),
+            "HTTP/1.1 200 OK");
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.0\r\n\r\n")), "HTTP/1.1 200 OK");
+}
+
+// Before issue 40 each of these ended the server with exit 3 ("internal error: basic_string::substr").
+TEST_F(CliServe, MalformedRequestsGet400AndTheServerGoesOn) {
+  for (const std::string request : {"GET ?x HTTP/1.1\r\n\r\n", "GET\r\n\r\n", "GET # HTTP/1.1\r\n\r\n", "\r\n\r\n",
+                                    "GET  / HTTP/1.1\r\n\r\n", "GET / HTTP/9.9\r\n\r\n", "G(T / HTTP/1.1\r\n\r\n",
+                                    "GET /%zz HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n", "GET /%2 HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n",
+                                    "GET / HTTP/1.1\r\nno colon\r\n\r\n"}) {
+    SCOPED_TRACE(request);
+    EXPECT_EQ(status_line(send_request(m_port, request)), "HTTP/1.1 400 Bad Request");
+    ASSERT_TRUE(alive());
+  }
+  EXPECT_EQ(status_line(http_get(m_port, "/")), "HTTP/1.1 200 OK");
+  // Heads beyond the bounds: a request line over 2 KiB, a head over 8 KiB.
+  EXPECT_EQ(status_line(http_get(m_port, "/" + std::string(3000, 'a'))), "HTTP/1.1 414 URI Too Long");
+  EXPECT_EQ(status_line(send_request(m_port, "GET / HTTP/1.1\r\nHost: 127.0.0.1\r\nX: " + std::string(9000, 'x') + "\r\n\r\n")),
+            "HTTP/1.1 431 Request Header Fields Too Large");
+  EXPECT_TRUE(alive());
+}
+
+// Before issue 40 one connection that sent nothing blocked every other client (one at a time, no timeout).
+TEST_F(CliServe, AnIdleConnectionBlocksNobodyAndTimesOut) {
+  const int idle = connect_to(m_port);
+  ASSERT_GE(idle, 0);
+  ::send(idle, "GET / HT", 8, MSG_NOSIGNAL);  // a head begun and never finished
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(status_line(http_get(m_port, "/")), "HTTP/1.1 200 OK");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
+  // The idle one is answered 408 and closed after 5 s.
+  const timeval longer{8, 0};
+  ::setsockopt(idle, SOL_SOCKET, SO_RCVTIMEO, &longer, sizeof longer);
+  EXPECT_EQ(status_line(receive_all(idle)), "HTTP/1.1 408 Request Timeout");
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_GT(waited, 4.0);
+  EXPECT_LT(waited, 7.5);
+  ::close(idle);
+}
+
+// At most 32 connections at once: one more is answered 503 at once, and the server stays up.
+TEST_F(CliServe, ConnectionsBeyondTheBoundGet503) {
+  std::vector<int> idle;
+  for (int i = 0; i < 32; ++i) {
+    const int fd = connect_to(m_port);
+    ASSERT_GE(fd, 0);
+    idle.push_back(fd);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // all 32 accepted
+  EXPECT_EQ(status_line(http_get(m_port, "/")), "HTTP/1.1 503 Service Unavailable");
+  ::close(idle.back());
+  idle.pop_back();
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));  // that thread ends after its 200 ms drain
+  EXPECT_EQ(status_line(http_get(m_port, "/")), "HTTP/1.1 200 OK");
+  for (const int fd : idle) ::close(fd);
+  EXPECT_TRUE(alive());
+}
+
+// Nothing outside the site's regular files: traversal (plain and percent-encoded), dotfiles, symbolic links
+// (to a file inside or outside), folders.
+TEST_F(CliServe, OnlyRegularFilesDirectlyInTheFolder) {
+  std::ofstream(m_dir / ".secret") << "secret";
+  std::filesystem::create_symlink("/etc/passwd", m_dir / "passwd.txt");
+  std::filesystem::create_symlink(m_dir / "index.html", m_dir / "link.html");
+  std::filesystem::create_directory(m_dir / "sub");
+  std::ofstream(m_dir / "sub" / "x.html") << "x";
+  std::ofstream(m_dir.parent_path() / "outside.html") << "outside";
+  for (const std::string target : {"/../outside.html", "/%2e%2e/outside.html", "/%2E%2E%2Foutside.html", "/./.", "/.",
+                                   "/..", "/.secret", "/%2esecret", "/passwd.txt", "/link.html", "/sub", "/sub/x.html",
+                                   "/sub%2fx.html", "//etc/passwd", "/index.html%00.js", "/%5c..%5coutside.html"}) {
+    SCOPED_TRACE(target);
+    EXPECT_EQ(status_line(http_get(m_port, target)), "HTTP/1.1 404 Not Found");
+  }
+  EXPECT_EQ(status_line(http_get(m_port, "/index.html")), "HTTP/1.1 200 OK");
+  EXPECT_EQ(status_line(http_get(m_port, "/%69ndex.html")), "HTTP/1.1 200 OK");  // decoded, then the rules
+  EXPECT_TRUE(alive());
+}
+
+TEST_F(CliServe, HeadAnswersAndOtherMethodsGet405) {
+  const std::string head = http_get(m_port, "/", "HEAD");
+  EXPECT_EQ(status_line(head), "HTTP/1.1 200 OK");
+  EXPECT_NE(head.find("Content-Length: " + std::to_string(std::filesystem::file_size(m_dir / "index.html")) + "\r\n"),
+            std::string::npos) << head;
+  EXPECT_EQ(head.size(), head.find("\r\n\r\n") + 4);  // no body
+  for (const std::string method : {"POST", "PUT", "DELETE", "OPTIONS"}) {
+    const std::string r = http_get(m_port, "/", method);
+    EXPECT_EQ(status_line(r), "HTTP/1.1 405 Method Not Allowed") << method;
+    EXPECT_NE(r.find("Allow: GET, HEAD\r\n"), std::string::npos) << r;
+  }
+  // A POST with a body it never reads still gets its whole answer.
+  const std::string post = send_request(m_port, "POST / HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 10000\r\n\r\n" +
+                                                std::string(10000, 'b'));
+  EXPECT_EQ(status_line(post), "HTTP/1.1 405 Method Not Allowed");
+}
+
+// The listening socket is bound to 127.0.0.1, not to every address: 127.0.0.2 (also this machine, also the
+// loopback device) is refused, as any other address would be.
+TEST_F(CliServe, ListensOn127001Only) {
+  const int ok = connect_to(m_port, "127.0.0.1");
+  EXPECT_GE(ok, 0);
+  if (ok >= 0) ::close(ok);
+  const int other = connect_to(m_port, "127.0.0.2");
+  EXPECT_LT(other, 0);
+  if (other >= 0) ::close(other);
 }
 
 }  // namespace

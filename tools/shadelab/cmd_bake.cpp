@@ -114,15 +114,9 @@ void check_size(const std::string& option, int size, int max) {
 }
 
 
-// Reads INPUT (warning about repaired NaN/Inf values).
-Image read_environment_image(const BakeOptions& o) {
-  ReadInfo info;
-  Image img = unwrap(read_image(o.input, &info));
-  if (info.nonfinite_repaired > 0) {
-    warn(o.input + ": " + std::to_string(info.nonfinite_repaired) + " NaN/Inf values replaced by 0");
-  }
-  return img;
-}
+// Reads INPUT, radiance: a NaN, Inf or negative texel is bad input naming the file and the texel
+// (read_radiance_image; it was a warning and a repair to 0 before issue 40).
+Image read_environment_image(const BakeOptions& o) { return unwrap(read_radiance_image(o.input)); }
 
 bool is_latlong(const Image& img) { return img.width == 2 * img.height; }
 

@@ -72,7 +72,7 @@ void run_ibl_error(const IblErrorCliOptions& o) {
   std::vector<NamedPath> outputs;
   for (const auto& n : names) outputs.push_back({"--out", dir / n});
   check_outputs({{"INPUT", o.input}}, outputs);
-  Image latlong = unwrap(read_image(o.input));
+  Image latlong = unwrap(read_radiance_image(o.input));  // NaN, Inf or negative: exit 2
   if (latlong.width != 2 * latlong.height) {
     throw UsageError(fmt::format("'{}': {} x {} is not a 2:1 lat-long environment", o.input, latlong.width, latlong.height));
   }
@@ -128,6 +128,13 @@ void run_ibl_error(const IblErrorCliOptions& o) {
              100.0 * map.corrected_summary.grazing_mean_abs, 100.0 * map.grazing_reduction);
   fmt::print("SH9 irradiance: mean |error| {:.2f}%, max {:.2f}%\n", 100.0 * map.sh_summary.mean_abs,
              100.0 * map.sh_summary.max_abs);
+  const int no_signal = map.split_sum_summary.no_signal_cells + map.sh_summary.no_signal_cells;
+  if (no_signal > 0) {
+    fmt::print("no signal (reference 0 or below 1e-6 of the mean, left out of the figures): {} of {} split-sum cells, "
+               "{} of {} SH9 cells\n", map.split_sum_summary.no_signal_cells,
+               map.split_sum_summary.no_signal_cells + map.split_sum_summary.signal_cells, map.sh_summary.no_signal_cells,
+               map.sh_summary.no_signal_cells + map.sh_summary.signal_cells);
+  }
   for (const auto& f : j["outputs"]) fmt::print("wrote {}\n", f.get<std::string>());
 }
 

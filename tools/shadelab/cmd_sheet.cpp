@@ -201,7 +201,7 @@ void run_sheet(const SheetOptions& o) {
   Environment env;
   if (!o.hdri.empty()) {
     ReadInfo info;
-    auto image = read_image(o.hdri, &info);
+    auto image = read_radiance_image(o.hdri, &info);  // NaN, Inf or negative: exit 2
     if (!image) throw UsageError("--hdri: " + image.error().message);
     if (image->width != 2 * image->height) {
       throw UsageError(fmt::format("--hdri: '{}' is {} x {}; a lat-long map is twice as wide as it is high", o.hdri,

@@ -18,19 +18,24 @@ namespace shadelab::cli {
 namespace {
 
 constexpr int cell_pixels = 24;
+// A cell with no signal on the heat maps: dark blue, outside the heat ramp (black, red, yellow, white), so
+// it cannot read as a small error; a cell with no pixels stays grey.
+const Rgb no_signal_colour{0.05, 0.1, 0.45};
 
 nlohmann::json cells_json(const IblErrorRow& row) {
   nlohmann::json cells = nlohmann::json::array();
   for (const IblErrorCell& c : row.cells) {
     cells.push_back({{"nv_lo", c.nv_lo}, {"nv_hi", c.nv_hi}, {"pixels", c.pixels}, {"shortcut", c.shortcut},
                      {"reference", c.reference}, {"reference_standard_error", c.reference_standard_error},
-                     {"error", c.error}});
+                     {"error", c.no_signal ? nlohmann::json(nullptr) : nlohmann::json(c.error)},
+                     {"no_signal", c.no_signal}});
   }
   return cells;
 }
 
 nlohmann::json summary_json(const IblErrorSummary& s) {
-  return {{"mean_abs_error", s.mean_abs}, {"max_abs_error", s.max_abs}, {"grazing_mean_abs_error", s.grazing_mean_abs}};
+  return {{"mean_abs_error", s.mean_abs}, {"max_abs_error", s.max_abs}, {"grazing_mean_abs_error", s.grazing_mean_abs},
+          {"no_signal_cells", s.no_signal_cells}};
 }
 
 // |error| of each cell through the heat ramp, white at `scale`.
@@ -40,7 +45,7 @@ Image heat_grid(const std::vector<IblErrorRow>& rows, double scale) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     for (int k = 0; k < cols; ++k) {
       const IblErrorCell& c = rows[i].cells[static_cast<std::size_t>(k)];
-      const Rgb colour = c.pixels > 0 ? heat_ramp(std::abs(c.error) / scale) : Rgb::gray(0.2);
+      const Rgb colour = c.pixels == 0 ? Rgb::gray(0.2) : c.no_signal ? no_signal_colour : heat_ramp(std::abs(c.error) / scale);
       for (int y = 0; y < cell_pixels; ++y)
         for (int x = 0; x < cell_pixels; ++x) img.set(k * cell_pixels + x, static_cast<int>(i) * cell_pixels + y, colour);
     }
@@ -58,7 +63,7 @@ LinePlot error_plot(const IblErrorMap& map, const std::string& input) {
     s.label = label;
     for (const IblErrorCell& c : row.cells) {
       s.x.push_back(0.5 * (c.nv_lo + c.nv_hi));
-      s.y.push_back(c.pixels > 0 ? c.error : std::nan(""));
+      s.y.push_back(c.pixels > 0 && !c.no_signal ? c.error : std::nan(""));
     }
     return s;
   };
@@ -87,14 +92,21 @@ std::string html_page(const IblErrorMap& map, const std::string& input, double s
     h << "</tr>\n";
     for (const IblErrorRow& row : rows) {
       h << "<tr><th>" << (first == "roughness" ? fmt::format("{:.3g}", row.roughness) : std::string("Lambert")) << "</th>";
-      for (const IblErrorCell& c : row.cells) h << "<td>" << (c.pixels > 0 ? pct(c.error) : std::string("-")) << "</td>";
+      for (const IblErrorCell& c : row.cells) {
+        h << "<td>" << (c.pixels == 0 ? std::string("-") : c.no_signal ? std::string("no signal") : pct(c.error)) << "</td>";
+      }
       h << "</tr>\n";
     }
     h << "</table>\n";
   };
   const auto summary = [&](const IblErrorSummary& s) {
-    h << fmt::format("<p>mean |error| {:.2f}%, max {:.2f}%, mean at N.V &lt; 0.3 {:.2f}%</p>\n", 100.0 * s.mean_abs,
+    h << fmt::format("<p>mean |error| {:.2f}%, max {:.2f}%, mean at N.V &lt; 0.3 {:.2f}%", 100.0 * s.mean_abs,
                      100.0 * s.max_abs, 100.0 * s.grazing_mean_abs);
+    if (s.no_signal_cells > 0) {
+      h << fmt::format(" (over {} cells; {} cells with no signal, dark blue on the maps, are left out: their "
+                       "reference is 0 or below 1e-6 of the map's mean)", s.signal_cells, s.no_signal_cells);
+    }
+    h << "</p>\n";
   };
   h << "<h2>Split sum (prefiltered GGX chain x DFG table)</h2>\n";
   table(map.split_sum, "roughness");

@@ -29,6 +29,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -96,14 +97,23 @@ const char* unknown_extension_reason() {
 }
 
 // Replaces NaN and +-Inf by 0 and counts them; counts negative values and keeps them.
+// The first of each is recorded (its texel and channel) before the repair.
 void repair_and_count(Image& image, ReadInfo& info) {
   int nonfinite = 0;
   int negative = 0;
-  for (float& v : image.data) {
+  const auto texel = [&](std::size_t i, float v) {
+    const std::size_t pixel = i / 3;
+    const std::size_t w = static_cast<std::size_t>(std::max(image.width, 1));
+    return ReadInfo::Texel{static_cast<int>(pixel % w), static_cast<int>(pixel / w), static_cast<int>(i % 3), v};
+  };
+  for (std::size_t i = 0; i < image.data.size(); ++i) {
+    float& v = image.data[i];
     if (!std::isfinite(v)) {
+      if (nonfinite == 0) info.first_nonfinite = texel(i, v);
       v = 0.0f;
       ++nonfinite;
     } else if (v < 0.0f) {
+      if (negative == 0) info.first_negative = texel(i, v);
       ++negative;
     }
   }
@@ -874,6 +884,50 @@ std::string exr_header_problem(const fs::path& path) {
 }
 
 Result<Image> read_image(const fs::path& path, ReadInfo* info) { return read_image(path, info, image_read_budget_bytes); }
+
+Result<bool> check_radiance(const fs::path& path, const Image& image, const ReadInfo& info) {
+  static constexpr const char* channel_names[] = {"R", "G", "B"};
+  const auto where = [](const ReadInfo::Texel& t) {
+    return "texel (" + std::to_string(t.x) + ", " + std::to_string(t.y) + ") channel " +
+           channel_names[std::clamp(t.channel, 0, 2)];
+  };
+  const auto number = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", v);
+    return std::string(text);
+  };
+  if (info.nonfinite_repaired > 0) {
+    const float v = info.first_nonfinite.value;
+    return read_error(path, where(info.first_nonfinite) + " is " + (std::isnan(v) ? "NaN" : v > 0 ? "+Inf" : "-Inf") +
+                                " (" + std::to_string(info.nonfinite_repaired) +
+                                " non-finite values); radiance must be finite and not negative");
+  }
+  if (info.negative_values == 0) return true;
+  double sum = 0.0;
+  for (const float v : image.data) sum += static_cast<double>(v);
+  const double mean = image.data.empty() ? 0.0 : sum / static_cast<double>(image.data.size());
+  const double floor = -radiance_negative_tolerance * std::max(mean, 0.0);
+  const std::size_t w = static_cast<std::size_t>(std::max(image.width, 1));
+  for (std::size_t i = 0; i < image.data.size(); ++i) {
+    const double v = static_cast<double>(image.data[i]);
+    if (!(v < floor) && !(v < 0.0 && mean <= 0.0)) continue;
+    const ReadInfo::Texel t{static_cast<int>((i / 3) % w), static_cast<int>((i / 3) / w), static_cast<int>(i % 3),
+                            image.data[i]};
+    return read_error(path, where(t) + " is " + number(v) + ", below -" + number(radiance_negative_tolerance) +
+                                " x the map's mean value " + number(mean) +
+                                " (the most lossy compression leaves); radiance must be finite and not negative");
+  }
+  return true;
+}
+
+Result<Image> read_radiance_image(const fs::path& path, ReadInfo* info, std::uint64_t budget_bytes) {
+  ReadInfo local;
+  auto image = read_image(path, &local, budget_bytes);
+  if (!image) return image;
+  if (auto ok = check_radiance(path, *image, local); !ok) return ok.error();
+  if (info != nullptr) *info = local;
+  return image;
+}
 
 Result<Image> read_image(const fs::path& path, ReadInfo* info, std::uint64_t budget_bytes) {
   const std::uint64_t budget = std::min(budget_bytes, image_read_budget_bytes);

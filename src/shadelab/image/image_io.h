@@ -11,7 +11,8 @@
 //   full-resolution level); the first part of a multi-part file. The image covers the display window:
 //   texels outside the data window are 0, data outside the display window is cropped.
 // - NaN and +-Inf values are replaced by 0 and counted in ReadInfo::nonfinite_repaired; negative values are
-//   kept as they are and counted in ReadInfo::negative_values.
+//   kept as they are and counted in ReadInfo::negative_values; the first of each (in row-major order) is
+//   recorded in ReadInfo::first_nonfinite / first_negative. read_radiance_image refuses both instead.
 // - Every failure (missing, empty, truncated or corrupt file, unknown extension, zero or too large size,
 //   over the memory budget) is an Error whose one-line message names the file. Nothing throws, nothing
 //   prints.
@@ -57,6 +58,14 @@ struct ReadInfo {
   bool partial_data_window = false;  // EXR: the data window differs from the display window
   int nonfinite_repaired = 0;   // float values that were NaN or +-Inf and are now 0
   int negative_values = 0;      // float values below 0, kept as they are
+  // The first texel (row-major) with a NaN/Inf value and with a negative value, as stored before the repair;
+  // x < 0 when there is none. channel: 0 R, 1 G, 2 B.
+  struct Texel {
+    int x = -1, y = -1, channel = -1;
+    float value = 0.0f;
+  };
+  Texel first_nonfinite;
+  Texel first_negative;
 };
 
 // Reads an image; `info`, when given, is filled on success.
@@ -64,6 +73,23 @@ Result<Image> read_image(const std::filesystem::path& path, ReadInfo* info = nul
 // The same with a smaller memory budget (at most image_read_budget_bytes): a scene gives each image what is
 // left of its own budget (scene/limits.h, max_scene_image_bytes).
 Result<Image> read_image(const std::filesystem::path& path, ReadInfo* info, std::uint64_t budget_bytes);
+
+// Lossy EXR compression (DWAA/DWAB, the Blender worlds) leaves small negative values around dark texels:
+// down to -0.025 of the map's mean value on blender-data's night.exr (-0.0057 and less on the seven others).
+// A negative value no further below 0 than this share of the map's mean (over every value) is such noise and
+// kept, as read_image keeps it; one further below is bad radiance.
+inline constexpr double radiance_negative_tolerance = 0.05;
+
+// An image of radiance (an environment map: `bake`, `ibl-error`, a scene's environment file, `sheet --hdri`,
+// the explorer's HDRIs): read_image, and then a NaN or Inf value, or a negative one beyond the tolerance
+// above (any negative one when the map's mean is not above 0), is an Error naming the file, the first such
+// texel (x, y, as the image reads: row 0 at the top) and its channel. Radiance is never negative or
+// infinite, and an environment's texels are light: repairing or clamping them would bake a different light
+// than the file holds without saying so (docs/testing.md, "Classes of bad input").
+Result<Image> read_radiance_image(const std::filesystem::path& path, ReadInfo* info = nullptr,
+                                  std::uint64_t budget_bytes = image_read_budget_bytes);
+// The check alone, for a read already made (image and info from read_image): an Error as above, or true.
+Result<bool> check_radiance(const std::filesystem::path& path, const Image& image, const ReadInfo& info);
 
 enum class ExrPixelType {
   float32,  // exact: 32-bit IEEE float per channel

@@ -756,6 +756,9 @@ TEST(ImageIoBlender, EveryWorldLoads) {
                 file.filename().string().c_str(), image->width, image->height, info.sample_type.c_str(),
                 info.channels, mean, sum[0] / n, sum[1] / n, sum[2] / n, max, info.nonfinite_repaired,
                 info.negative_values, ms);
+    // Their negative values (DWAB noise) are within radiance_negative_tolerance: every command that reads an
+    // environment takes them (issue 40).
+    EXPECT_TRUE(check_radiance(file, *image, info)) << check_radiance(file, *image, info).error().message;
     const auto it = expected.find(file.filename().string());
     if (it != expected.end()) {
       EXPECT_EQ(image->width, it->second.width) << file;
@@ -880,7 +883,62 @@ TEST_F(ImageIo, NonFiniteTexelsAreRepairedAndCounted) {
     for (float v : back->data) {
       ASSERT_TRUE(std::isfinite(v));
     }
+    // The first of each, as stored (issue 40): NaN at (1, 1) R, the negative at (7, 3) G.
+    EXPECT_EQ(info.first_nonfinite.x, 1);
+    EXPECT_EQ(info.first_nonfinite.y, 1);
+    EXPECT_EQ(info.first_nonfinite.channel, 0);
+    EXPECT_TRUE(std::isnan(info.first_nonfinite.value));
+    EXPECT_EQ(info.first_negative.x, 7);
+    EXPECT_EQ(info.first_negative.y, 3);
+    EXPECT_EQ(info.first_negative.channel, 1);
+    EXPECT_EQ(info.first_negative.value, -0.5f);
   }
+}
+
+// Radiance (an environment map) is finite and not negative: read_radiance_image refuses the first texel that
+// is not, naming the file, the texel and the channel (issue 40); negatives within lossy-compression noise
+// (radiance_negative_tolerance of the map's mean) are kept; a clean file reads as read_image reads it.
+TEST_F(ImageIo, RadianceReadsRefuseNegativeAndNonFiniteTexels) {
+  Image image(8, 4);
+  for (float& v : image.data) v = 0.5f;
+  image.set(1, 0, {0.5, -0.02, 0.5});  // 4% of the mean: noise, kept
+  image.set(6, 2, {0.5, 0.5, -0.25});
+  const fs::path neg = path("negative.exr");
+  ASSERT_TRUE(write_image(image, neg));
+  const Result<Image> a = read_radiance_image(neg);
+  ASSERT_FALSE(a);
+  EXPECT_NE(a.error().message.find("negative.exr': texel (6, 2) channel B is -0.25, below -0.05 x the map's mean"),
+            std::string::npos) << a.error().message;
+  image.set(6, 2, {0.5, 0.5, 0.5});
+  const fs::path noise = path("noise.exr");
+  ASSERT_TRUE(write_image(image, noise));
+  ReadInfo noise_info;
+  const Result<Image> kept = read_radiance_image(noise, &noise_info);
+  ASSERT_TRUE(kept) << kept.error().message;
+  EXPECT_EQ(kept->at(1, 0).g, -0.02f);
+  EXPECT_EQ(noise_info.negative_values, 1);
+  // A map whose mean is not above 0: any negative value.
+  Image dark(8, 4);
+  dark.set(3, 1, {0.0, 0.0, -1e-6});
+  const fs::path dark_path = path("dark.exr");
+  ASSERT_TRUE(write_image(dark, dark_path));
+  const Result<Image> d = read_radiance_image(dark_path);
+  ASSERT_FALSE(d);
+  EXPECT_NE(d.error().message.find("texel (3, 1) channel B is -1e-06"), std::string::npos) << d.error().message;
+  image.set(6, 2, {0.5, -std::numeric_limits<double>::infinity(), 0.5});
+  const fs::path inf = path("inf.exr");
+  ASSERT_TRUE(write_image(image, inf));
+  const Result<Image> b = read_radiance_image(inf);
+  ASSERT_FALSE(b);
+  EXPECT_NE(b.error().message.find("inf.exr': texel (6, 2) channel G is -Inf"), std::string::npos) << b.error().message;
+  image.set(6, 2, {0.0, 0.0, 0.0});  // black is light
+  const fs::path ok = path("ok.exr");
+  ASSERT_TRUE(write_image(image, ok));
+  ReadInfo info;
+  const Result<Image> c = read_radiance_image(ok, &info);
+  ASSERT_TRUE(c) << c.error().message;
+  EXPECT_EQ(c->data, read_image(ok).value().data);
+  EXPECT_EQ(info.format, "exr");
 }
 
 // ------------------------------------------------------------------------------------------- atomic write

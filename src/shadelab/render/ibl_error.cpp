@@ -140,12 +140,44 @@ std::string split_sum_correction_text(GameSplitSumDirection correction) {
   return "";
 }
 
+int mark_no_signal_cells(std::vector<IblErrorRow>& rows) {
+  double sum = 0.0;
+  int n = 0;
+  for (const IblErrorRow& row : rows) {
+    for (const IblErrorCell& c : row.cells) {
+      if (c.pixels == 0) continue;
+      sum += std::max(0.0, c.reference);
+      ++n;
+    }
+  }
+  // The threshold is relative to the map's own mean, so the map's units do not matter; a reference <= 0
+  // never has signal (the division would flip or explode).
+  const double threshold = n > 0 ? ibl_error_no_signal_fraction * (sum / n) : 0.0;
+  int signal = 0;
+  for (IblErrorRow& row : rows) {
+    for (IblErrorCell& c : row.cells) {
+      if (c.pixels == 0) continue;
+      c.no_signal = !(c.reference > 0.0 && c.reference > threshold);
+      if (c.no_signal) {
+        c.error = 0.0;
+      } else {
+        ++signal;
+      }
+    }
+  }
+  return signal;
+}
+
 IblErrorSummary summarize_ibl_error(const std::vector<IblErrorRow>& rows) {
   IblErrorSummary s;
   int n = 0, g = 0;
   for (const IblErrorRow& row : rows) {
     for (const IblErrorCell& c : row.cells) {
       if (c.pixels == 0) continue;
+      if (c.no_signal) {
+        ++s.no_signal_cells;
+        continue;
+      }
       const double e = std::abs(c.error);
       s.mean_abs += e;
       s.max_abs = std::max(s.max_abs, e);
@@ -156,6 +188,7 @@ IblErrorSummary summarize_ibl_error(const std::vector<IblErrorRow>& rows) {
       }
     }
   }
+  s.signal_cells = n;
   if (n > 0) s.mean_abs /= n;
   if (g > 0) s.grazing_mean_abs /= g;
   return s;
@@ -185,6 +218,15 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
     return make_error("ibl-error: view_direction must be a finite non-zero vector");
   }
   if (scene.environment.kind == Environment::Kind::none) return make_error("ibl-error: the scene has no environment");
+  const auto source = [&] { return "'" + printable(scene.environment.source) + "'"; };
+  if (scene.environment.kind == Environment::Kind::image) {
+    // Before any render: a black map has no signal anywhere (the cells would all be refused below).
+    const auto& d = scene.environment.latlong.data;
+    if (std::none_of(d.begin(), d.end(), [](float t) { return t > 0.0f; })) {
+      return make_error("ibl-error: " + source() + ": every texel is 0 or less; a black environment gives no signal "
+                        "to measure an error against");
+    }
+  }
   for (const auto& [key, value] : params) {
     if (key == roughness_param) return make_error("ibl-error: " + key + " is set per row (use the roughness list)");
     if (key == fixed.first) {
@@ -221,6 +263,18 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
     if (!corrected) return corrected.error();
     map.corrected.push_back(bin_images(s, *corrected, *ref, o.nv_bins, r));
   }
+  // The corrected rows share the split-sum rows' references, so they share their flags.
+  if (mark_no_signal_cells(map.split_sum) == 0) {
+    return make_error("ibl-error: " + source() + ": no cell of the split-sum map has signal (the reference is 0, or "
+                      "below 1e-6 of the mean, in every N.V bin)");
+  }
+  for (std::size_t i = 0; i < map.corrected.size(); ++i) {
+    for (std::size_t k = 0; k < map.corrected[i].cells.size(); ++k) {
+      IblErrorCell& c = map.corrected[i].cells[k];
+      c.no_signal = map.split_sum[i].cells[k].no_signal;
+      if (c.no_signal) c.error = 0.0;
+    }
+  }
   map.split_sum_summary = summarize_ibl_error(map.split_sum);
   map.corrected_summary = summarize_ibl_error(map.corrected);
   map.grazing_reduction = map.split_sum_summary.grazing_mean_abs > 0.0
@@ -236,6 +290,12 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
   auto game = shortcut_image(s, sh, *baked);
   if (!game) return game.error();
   map.sh = bin_images(s, *game, *ref, o.nv_bins, 0.0);
+  std::vector<IblErrorRow> sh_rows{std::move(map.sh)};
+  if (mark_no_signal_cells(sh_rows) == 0) {
+    return make_error("ibl-error: " + source() + ": no cell of the SH9 map has signal (the reference is 0, or below 1e-6 "
+                      "of the mean, in every N.V bin)");
+  }
+  map.sh = std::move(sh_rows.front());
   map.sh_summary = summarize_ibl_error({map.sh});
   map.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return map;

@@ -28,8 +28,13 @@
 // of those means (bins, not pixels: the reference's noise averages out; its standard error is reported).
 // The same for the diffuse shortcut: a white Lambert sphere (kd = 1) under GameAmbient::sh9 (the SH9
 // irradiance, Ramamoorthi & Hanrahan 2001) against the path tracer.
-// Summary figures: the mean and the largest |error| over the cells, and the mean |error| over the cells
-// with N.V below 0.3 (the grazing bins: their upper edge <= 0.3 + 1e-12).
+// A cell with no signal: its reference is <= 0, or at most ibl_error_no_signal_fraction of the mean reference
+// of its map's cells (the split-sum rows together, which the corrected rows share; the SH row alone); its
+// relative error means nothing, so it is flagged (no_signal), its error left 0 and it is left out of the
+// summary figures, which count it (no_signal_cells). A map in which no cell has signal is an Error, and so is
+// an image environment whose texels are all 0 (found before any render).
+// Summary figures: the mean and the largest |error| over the cells with signal, and the mean |error| over
+// those with N.V below 0.3 (the grazing bins: their upper edge <= 0.3 + 1e-12).
 // Deterministic: the renders are (seeded, any thread count).
 // Errors (Result): a model whose specular ambient is not the split sum (only ggx and filament), an empty or
 // out-of-range roughness list (each in (0, 1]), nv_bins outside [1, 64], size outside [16, 2048], spp
@@ -45,6 +50,9 @@
 #include "shadelab/scene/scene.h"
 
 namespace shadelab {
+
+// A cell whose reference is at most this share of the map's mean reference has no signal (above).
+inline constexpr double ibl_error_no_signal_fraction = 1e-6;
 
 struct IblErrorOptions {
   std::vector<double> roughness{0.1, 0.25, 0.4, 0.55, 0.7, 0.85, 1.0};  // perceptual roughness of the rows
@@ -66,7 +74,8 @@ struct IblErrorCell {
   double shortcut = 0.0;            // mean luminance of the game renderer's pixels
   double reference = 0.0;           // mean luminance of the path tracer's pixels
   double reference_standard_error = 0.0;  // of that mean, from the spread of the bin's pixels
-  double error = 0.0;               // (shortcut - reference) / reference
+  double error = 0.0;               // (shortcut - reference) / reference; 0 when no_signal
+  bool no_signal = false;           // pixels > 0 but the reference is too small to divide by (header)
 };
 
 struct IblErrorRow {
@@ -78,6 +87,8 @@ struct IblErrorSummary {
   double mean_abs = 0.0;          // over every cell with pixels
   double max_abs = 0.0;
   double grazing_mean_abs = 0.0;  // over the cells with nv_hi <= 0.3
+  int no_signal_cells = 0;        // cells with pixels left out because they have no signal
+  int signal_cells = 0;           // cells the figures are over
 };
 
 struct IblErrorMap {
@@ -106,7 +117,11 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
 // What a correction is, in one line (the JSON's corrected.direction, the page).
 std::string split_sum_correction_text(GameSplitSumDirection correction);
 
-// The summary figures of a set of rows (what ibl_error_map fills in).
+// Flags the cells of rows (one map) that have no signal (header); returns how many cells have signal.
+int mark_no_signal_cells(std::vector<IblErrorRow>& rows);
+
+// The summary figures of a set of rows (what ibl_error_map fills in); cells with no signal are counted, not
+// averaged.
 IblErrorSummary summarize_ibl_error(const std::vector<IblErrorRow>& rows);
 
 }  // namespace shadelab

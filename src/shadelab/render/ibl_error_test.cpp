@@ -91,6 +91,54 @@ TEST(IblError, TheSameInputsGiveTheSameMap) {
   }
 }
 
+// A cell whose reference is 0, negative or below 1e-6 of the map's mean has no signal: flagged, its error 0,
+// counted and left out of the summary (before issue 40 it was scored as a perfect cell, error 0, in the mean).
+TEST(IblError, CellsWithNoSignalAreFlaggedAndLeftOutOfTheSummary) {
+  std::vector<IblErrorRow> rows(1);
+  const auto cell = [](double nv_hi, int pixels, double shortcut, double reference) {
+    IblErrorCell c;
+    c.nv_lo = nv_hi - 0.25;
+    c.nv_hi = nv_hi;
+    c.pixels = pixels;
+    c.shortcut = shortcut;
+    c.reference = reference;
+    c.error = reference > 0.0 ? (shortcut - reference) / reference : 0.0;
+    return c;
+  };
+  rows[0].cells = {cell(0.25, 10, 0.2, 0.0), cell(0.5, 10, 1.1, 1.0), cell(0.75, 10, 0.3, -0.5),
+                   cell(1.0, 10, 1.0, 1e-9), cell(1.0, 0, 0.0, 0.0)};
+  EXPECT_EQ(mark_no_signal_cells(rows), 1);
+  EXPECT_TRUE(rows[0].cells[0].no_signal);
+  EXPECT_FALSE(rows[0].cells[1].no_signal);
+  EXPECT_TRUE(rows[0].cells[2].no_signal);
+  EXPECT_TRUE(rows[0].cells[3].no_signal);  // 1e-9 < 1e-6 x the mean reference (0.25)
+  EXPECT_FALSE(rows[0].cells[4].no_signal);  // no pixels: not a cell at all
+  const IblErrorSummary s = summarize_ibl_error(rows);
+  EXPECT_EQ(s.no_signal_cells, 3);
+  EXPECT_EQ(s.signal_cells, 1);
+  EXPECT_NEAR(s.mean_abs, 0.1, 1e-12);  // the one cell with signal; not 0.1 / 4
+  EXPECT_NEAR(s.max_abs, 0.1, 1e-12);
+  EXPECT_EQ(s.grazing_mean_abs, 0.0);  // the grazing cell has no signal
+  std::vector<IblErrorRow> dark(1);
+  dark[0].cells = {cell(0.5, 10, 0.0, 0.0), cell(1.0, 4, 0.1, -1.0)};
+  EXPECT_EQ(mark_no_signal_cells(dark), 0);
+}
+
+// An image environment that is black everywhere: an error before any render (its cells would have no signal).
+TEST(IblError, ABlackEnvironmentIsAnError) {
+  Scene scene;
+  scene.environment.kind = Environment::Kind::image;
+  scene.environment.source = "black.exr";
+  scene.environment.latlong = Image(16, 8);
+  IblErrorOptions o;
+  o.size = 16;
+  o.spp = 1;
+  o.roughness = {0.5};
+  const auto map = ibl_error_map(scene, "ggx", {}, o);
+  ASSERT_FALSE(map);
+  EXPECT_NE(map.error().message.find("'black.exr': every texel is 0"), std::string::npos) << map.error().message;
+}
+
 TEST(IblError, BadOptionsAreErrorsNamingThem) {
   const Scene s = constant_environment(0.5);
   const auto message = [&](const std::string& model, const IblErrorOptions& o) {

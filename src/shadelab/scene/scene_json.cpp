@@ -969,8 +969,11 @@ class Parser {
       const Object o(node, {"file", "rotation", "scale"}, "an image environment");
       const Node file_node = *o.get("file");
       const std::filesystem::path path = file(file_node);
-      auto image = read_budgeted(path, nullptr);
+      ReadInfo info;
+      auto image = read_budgeted(path, &info);
       if (!image) file_node.fail(image.error().message);
+      // Radiance: a NaN, Inf or (beyond lossy-compression noise) negative texel is refused, naming it (image_io.h read_radiance_image).
+      if (auto ok = check_radiance(path, *image, info); !ok) file_node.fail(ok.error().message);
       charge_image(file_node, image->pixel_count() * 12);
       if (image->width != 2 * image->height) {
         file_node.fail("'" + path.string() + "' is " + std::to_string(image->width) + " x " +
