@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <tuple>
 #include <vector>
 
 #include "shadelab/envmap/cubemap.h"
@@ -92,15 +91,22 @@ Rgb old_sample_ggx_chain(const GgxPrefilteredCube& chain, const Vec3& dir, doubl
   return v0 * (1.0 - t) + old_sample_cube_seamless(chain.levels[static_cast<std::size_t>(l1)], dir) * t;
 }
 
+// The two texels around x in a table of n texel centres (i + 1/2)/n and the weight of the second, clamped.
+struct OldLerp {
+  int i0, i1;
+  double t;
+};
+OldLerp old_texel_lerp(double x, int n) {
+  const double p = std::clamp(x * n - 0.5, 0.0, static_cast<double>(n - 1));
+  const int i0 = std::min(static_cast<int>(p), n - 1);
+  return {i0, std::min(i0 + 1, n - 1), p - i0};
+}
+
 DfgAb old_dfg_lookup(const DfgTable& table, double mu, double roughness) {
   const int n = table.size;
-  const auto lerp = [n](double x) {
-    const double p = std::clamp(x * n - 0.5, 0.0, static_cast<double>(n - 1));
-    const int i0 = std::min(static_cast<int>(p), n - 1);
-    return std::tuple<int, int, double>{i0, std::min(i0 + 1, n - 1), p - i0};
-  };
-  const auto [x0, x1, tx] = lerp(mu);
-  const auto [y0, y1, ty] = lerp(roughness);
+  const OldLerp lx = old_texel_lerp(mu, n), ly = old_texel_lerp(roughness, n);
+  const int x0 = lx.i0, x1 = lx.i1, y0 = ly.i0, y1 = ly.i1;
+  const double tx = lx.t, ty = ly.t;
   const auto at = [&](int c) {
     return (table.at(x0, y0, c) * (1.0 - tx) + table.at(x1, y0, c) * tx) * (1.0 - ty) +
            (table.at(x0, y1, c) * (1.0 - tx) + table.at(x1, y1, c) * tx) * ty;
@@ -109,13 +115,9 @@ DfgAb old_dfg_lookup(const DfgTable& table, double mu, double roughness) {
 }
 SplitSumLobes old_split_sum_lobes(const SplitSumLobeTable& table, double mu, double roughness) {
   const int n = table.size();
-  const auto lerp = [n](double x) {
-    const double p = std::clamp(x * n - 0.5, 0.0, static_cast<double>(n - 1));
-    const int i0 = std::min(static_cast<int>(p), n - 1);
-    return std::tuple<int, int, double>{i0, std::min(i0 + 1, n - 1), p - i0};
-  };
-  const auto [x0, x1, tx] = lerp(mu);
-  const auto [y0, y1, ty] = lerp(roughness);
+  const OldLerp lx = old_texel_lerp(mu, n), ly = old_texel_lerp(roughness, n);
+  const int x0 = lx.i0, x1 = lx.i1, y0 = ly.i0, y1 = ly.i1;
+  const double tx = lx.t, ty = ly.t;
   const auto lerp2 = [&](auto get) {
     const double lo = get(table.at(x0, y0)) * (1.0 - tx) + get(table.at(x1, y0)) * tx;
     const double hi = get(table.at(x0, y1)) * (1.0 - tx) + get(table.at(x1, y1)) * tx;
