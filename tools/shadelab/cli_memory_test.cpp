@@ -96,16 +96,21 @@ void write_bytes(const fs::path& p, const std::vector<char>& bytes) {
   f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
-// An EXR of one pixel whose display window is width x height: the reader allocates the whole display
-// window (black outside the data window) from a file of a few hundred bytes. Written by write_image, then
-// the displayWindow attribute (box2i: xmin, ymin, xmax, ymax) patched.
-fs::path bomb_exr(const std::string& name, int width, int height) {
-  const fs::path p = dir() / name;
+// A 1 x 1 uncompressed EXR of grey 0.5, the small valid file the bombs below patch.
+void write_one_pixel_exr(const fs::path& p) {
   Image one(1, 1);
   one.set(0, 0, Rgb::gray(0.5));
   WriteOptions o;
   o.exr_compression = ExrCompression::none;
   EXPECT_TRUE(write_image(one, p, o));
+}
+
+// An EXR of one pixel whose display window is width x height: the reader allocates the whole display
+// window (black outside the data window) from a file of a few hundred bytes. Written by write_image, then
+// the displayWindow attribute (box2i: xmin, ymin, xmax, ymax) patched.
+fs::path bomb_exr(const std::string& name, int width, int height) {
+  const fs::path p = dir() / name;
+  write_one_pixel_exr(p);
   std::string text = read_text(p);
   std::vector<char> bytes(text.begin(), text.end());
   const std::string key("displayWindow\0box2i\0", 20);
@@ -319,11 +324,7 @@ TEST(MemoryBound, OutOfMemoryIsExitCodeTwoWithOneLine) {
 // 2.1 GB before `compare` exited 2.
 fs::path claiming_exr(const std::string& name, std::int32_t claimed) {
   const fs::path p = dir() / name;
-  Image one(1, 1);
-  one.set(0, 0, Rgb::gray(0.5));
-  WriteOptions o;
-  o.exr_compression = ExrCompression::none;
-  EXPECT_TRUE(write_image(one, p, o));
+  write_one_pixel_exr(p);
   std::string bytes = read_text(p);
   const std::string value = "hello";
   std::string attribute("comments\0string\0", 16);
