@@ -217,3 +217,82 @@ TEST(CliShader, BadInput) {
 }
 
 }  // namespace
+
+namespace ibl {
+
+using shadelab::testing::run;
+
+// One `bake ibl` of forest.exr with its defaults (the files an engine would upload), shared by the tests below.
+const fs::path& forest_bake() {
+  static const fs::path dir = [] {
+    const fs::path d = temp_dir() / "forest_ibl";
+    const auto r = run("bake ibl " + (fs::path(SHADELAB_BLENDER_WORLDS) / "forest.exr").string() + " --out-dir " + d.string());
+    EXPECT_EQ(r.code, 0) << r.err;
+    return d;
+  }();
+  return dir;
+}
+
+TEST(CliShaderIbl, ExportsTheEnvironmentLightingForTheSplitSumModels) {
+  for (const char* lang : {"glsl", "essl", "hlsl"}) {
+    const auto r = run(std::string("shader ggx --lang ") + lang + " --ibl");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string v3 = std::string(lang) == "hlsl" ? "float3" : "vec3";
+    EXPECT_NE(r.out.find(v3 + " brdf_ggx_ambient_game(" + v3 + " n, " + v3 + " v, Sh9Coefficients sh, int levels, int mapping)"),
+              std::string::npos) << lang;
+    EXPECT_NE(r.out.find("game_ibl_ambient(n, v, ggx_split_sum(ggx_prepare(brdf_ggx_params()))"), std::string::npos) << lang;
+    EXPECT_NE(r.out.find("shadelab_ggx_chain"), std::string::npos) << lang;
+    EXPECT_NE(r.out.find("#ifndef SHADELAB_IBL_FETCHES"), std::string::npos) << lang;
+    EXPECT_NE(r.out.find("// Made by: shadelab shader ggx --lang " + std::string(lang) + " --ibl"), std::string::npos);
+  }
+  // The BRDF alone does not carry the IBL kernels.
+  EXPECT_EQ(run("shader ggx --lang glsl").out.find("game_ibl_ambient"), std::string::npos);
+  // A model without a split sum: one line, exit 2.
+  expect_usage_error("shader phong --lang glsl --ibl", "split-sum description");
+  expect_usage_error("shader ggx --lang glsl --ibl forest.exr", "--ibl: export takes no value");
+  expect_usage_error("shader verify ggx --lang glsl --ibl /nonexistent/forest.exr", "no such file");
+  expect_usage_error("shader verify ggx --lang glsl --ibl-size 64", "--ibl-size: only with --ibl");
+}
+
+TEST(CliShaderIbl, TheExportedSplitSumMatchesTheGameRendererAndOnePercentOffFails) {
+  const fs::path& dir = forest_bake();
+  for (const char* model : {"ggx", "filament"}) {
+    for (const char* lang : {"glsl", "essl", "hlsl"}) {
+      const auto r = run(std::string("shader verify ") + model + " --lang " + lang + " --ibl " + dir.string() + " --json");
+      ASSERT_EQ(r.code, 0) << model << " " << lang << ": " << r.out << r.err;
+      const auto j = json_of(r);
+      EXPECT_EQ(j["lang"], lang);
+      EXPECT_GT(j["pixels"].get<int>(), 9000) << "a 128 x 128 sphere";
+      EXPECT_LE(j["max_rel_error"].get<double>(), 1e-3) << model << " " << lang;
+      EXPECT_LE(j["mean_rel_error"].get<double>(), j["max_rel_error"].get<double>());
+      EXPECT_EQ(j["nonfinite"], 0);
+      EXPECT_NE(j["device"].get<std::string>().find("llvmpipe"), std::string::npos) << j["device"];
+      if (std::string(lang) == "essl") {
+        EXPECT_NE(j["device"].get<std::string>().find("WebGL 2"), std::string::npos);
+      }
+      for (const char* key : {"device", "lang", "max_rel_error", "mean_rel_error", "pixels"}) EXPECT_TRUE(j.contains(key)) << key;
+    }
+  }
+  // The same export with one DFG term scaled by 1.01 (A, in dfg_read) fails, with exit 1. A metal: its specular
+  // ambient is f0 A prefiltered (f0 = 0.9), so A x 1.01 moves its pixels by up to 2.5e-3 (seen); with ggx's
+  // defaults (a dielectric) the largest move seen was 1.6e-3, still caught.
+  const std::string params = "--param metallic=1 --param base_color=0.9 --param perceptual_roughness=0.4";
+  const fs::path bad = broken("filament " + params + " --lang glsl --ibl", "bad_dfg.glsl", "ab.a = ", "ab.a = 1.01 * ");
+  const auto r = run("shader verify filament " + params + " --lang glsl --ibl " + dir.string() + " --source " + bad.string() + " --json");
+  EXPECT_EQ(r.code, 1) << r.out << r.err;
+  EXPECT_GT(nlohmann::json::parse(r.out)["max_rel_error"].get<double>(), 1.5e-3);
+  const auto good = run("shader verify filament " + params + " --lang glsl --ibl " + dir.string() + " --json");
+  EXPECT_EQ(good.code, 0) << good.out << good.err;
+}
+
+TEST(CliShaderIbl, VerifyBakesAnEnvironmentImageItself) {
+  // --ibl ENV runs `bake ibl ENV` with its defaults into a temporary folder first; the human-readable report.
+  const auto r = run("shader verify ggx --lang glsl --ibl " + (fs::path(SHADELAB_BLENDER_WORLDS) / "studio.exr").string() +
+                     " --ibl-size 48");
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("environment lighting under"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("pixels: "), std::string::npos);
+  EXPECT_NE(r.out.find("PASS"), std::string::npos);
+}
+
+}  // namespace ibl

@@ -1,18 +1,24 @@
 // shadelab shader MODEL [--param NAME=VALUE ...] --lang glsl|essl|hlsl [--out FILE] [--entry NAME] [--uniforms]
-//                [--tables-out FILE]
+//                [--tables-out FILE] [--ibl]
 // shadelab shader verify MODEL [--param ...] --lang glsl|essl|hlsl [--source FILE] [--cases N] [--json]
 //                       [--entry NAME] [--uniforms] [--device all|vulkan|webgl2] [--tolerance X] [--seed N]
+//                       [--ibl ENV|BAKE_DIR [--ibl-size N]]
 // Exports a model as a shader function file, or verifies a shader (exported or the user's) on real drivers
 // against the C++ reference (docs/shaders.md). verify exits 0 when the shader agrees, 1 when it does not.
 #include <fmt/core.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
+#include <optional>
+#include <stdexcept>
 
 #include "cli_common.h"
 #include "export.h"
+#include "process.h"
 #include "shadelab/image/image_io.h"
 #include "verify.h"
+#include "verify_ibl.h"
 
 namespace shadelab::cli {
 
@@ -32,6 +38,8 @@ struct ShaderOptions {
   std::string device = "all";
   double tolerance = shaders::kDefaultTolerance;
   std::uint64_t seed = shaders::kDefaultSeed;
+  std::string ibl;      // export: present (a flag); verify: the environment or a bake directory
+  int ibl_size = 128;
 };
 
 std::string command_line(const ShaderOptions& o, const std::string& model) {
@@ -40,6 +48,7 @@ std::string command_line(const ShaderOptions& o, const std::string& model) {
   s += " --lang " + o.lang;
   if (!o.entry.empty()) s += " --entry " + o.entry;
   if (o.uniforms) s += " --uniforms";
+  if (!o.ibl.empty()) s += " --ibl";
   return s;
 }
 
@@ -47,7 +56,7 @@ nlohmann::json array3(const auto& a) { return nlohmann::json::array({a[0], a[1],
 
 std::string vec_text(const auto& a) { return fmt::format("({:.9g}, {:.9g}, {:.9g})", a[0], a[1], a[2]); }
 
-void run_verify(const ShaderOptions& o, const std::string& model) {
+void run_verify(const ShaderOptions& o, const std::string& model, bool ibl, bool tolerance_given) {
   shaders::VerifyOptions v;
   v.model = model;
   v.params = parse_assignments(o.params);
@@ -62,7 +71,32 @@ void run_verify(const ShaderOptions& o, const std::string& model) {
   else if (o.device == "vulkan") v.device = shaders::VerifyDevice::vulkan;
   else if (o.device == "webgl2") v.device = shaders::VerifyDevice::webgl2;
   else throw UsageError("--device: unknown device '" + o.device + "' (devices: all, vulkan, webgl2)");
-  work_begins();
+  std::optional<shaders::TempDir> bake_dir;
+  if (ibl) {
+    if (o.ibl.empty()) throw UsageError("--ibl: verify needs the environment (or a `bake ibl` directory): --ibl ENV");
+    if (o.ibl_size < 8 || o.ibl_size > 1024) throw UsageError("--ibl-size: " + std::to_string(o.ibl_size) + " is out of range [8, 1024]");
+    std::error_code ec;
+    if (!std::filesystem::exists(o.ibl, ec)) throw UsageError("--ibl: " + o.ibl + ": no such file or directory");
+    v.ibl_size = o.ibl_size;
+    if (!tolerance_given) v.tolerance = shaders::kIblTolerance;
+    work_begins();
+    if (std::filesystem::is_directory(o.ibl, ec)) {
+      v.ibl_dir = o.ibl;
+    } else {
+      // The files `bake ibl ENV` writes, with its defaults: this program run as `bake ibl`.
+      bake_dir.emplace("shadelab-verify-ibl");
+      const std::string out = (bake_dir->path() / "bake").string();
+      auto run = unwrap(shaders::run_process({"/proc/self/exe", "bake", "ibl", o.ibl, "--out-dir", out}, 600.0));
+      if (run.exit_code != 0) {
+        const std::string why = run.err.substr(0, run.err.find('\n'));
+        if (run.exit_code == 2) throw UsageError("--ibl: bake ibl " + o.ibl + ": " + (why.rfind("shadelab: ", 0) == 0 ? why.substr(10) : why));
+        throw std::runtime_error("--ibl: bake ibl " + o.ibl + " failed (exit code " + std::to_string(run.exit_code) + "): " + why);
+      }
+      v.ibl_dir = out;
+    }
+  } else {
+    work_begins();
+  }
   const shaders::VerifyReport r = unwrap(shaders::verify_shader(v));
   const shaders::DeviceReport& c = r.combined;
   if (o.json) {
@@ -71,12 +105,33 @@ void run_verify(const ShaderOptions& o, const std::string& model) {
       worst = {{"wi", array3(c.worst->wi)}, {"wo", array3(c.worst->wo)}, {"shader", array3(c.worst->shader)},
                {"reference", array3(c.worst->reference)}};
     }
-    print_json({{"device", c.device}, {"lang", o.lang}, {"cases", c.cases}, {"max_rel_error", c.max_rel_error},
-                {"mean_rel_error", c.mean_rel_error}, {"nonfinite", c.nonfinite}, {"worst", worst}});
+    nlohmann::json j = {{"device", c.device}, {"lang", o.lang}, {"cases", c.cases}, {"max_rel_error", c.max_rel_error},
+                        {"mean_rel_error", c.mean_rel_error}, {"nonfinite", c.nonfinite}, {"worst", worst}};
+    if (ibl) {
+      j["pixels"] = r.pixels;
+      j["tolerance"] = r.tolerance;
+      j["worst"] = c.worst ? nlohmann::json{{"n", array3(c.worst->wi)}, {"v", array3(c.worst->wo)}, {"shader", array3(c.worst->shader)},
+                                            {"reference", array3(c.worst->reference)}}
+                           : nlohmann::json(nullptr);
+    }
+    print_json(j);
   } else {
-    fmt::print("shader verify {} ({}, {})\n", model, shaders::lang_display_name(v.lang),
-               o.source.empty() ? "the exported shader" : o.source);
+    fmt::print("shader verify {} ({}, {}{})\n", model, shaders::lang_display_name(v.lang),
+               o.source.empty() ? "the exported shader" : o.source, ibl ? ", environment lighting under " + o.ibl : "");
     for (const auto& d : r.devices) {
+      if (ibl) {
+        fmt::print("  device: {}\n", d.device);
+        fmt::print("    pixels: {} (a {} x {} sphere, N.V >= {:g}; against render --mode game with the same files)\n",
+                   d.cases, v.ibl_size, v.ibl_size, shaders::kIblMinCosine);
+        fmt::print("    max relative error: {:.3g}   mean: {:.3g}   (|shader - reference| / max(|reference|, {:g}))\n",
+                   d.max_rel_error, d.mean_rel_error, shaders::kRelativeErrorFloor);
+        fmt::print("    non-finite outputs: {}\n", d.nonfinite);
+        if (d.worst) {
+          fmt::print("    worst pixel: n = {}, v = {}\n      shader    {}\n      reference {}\n", vec_text(d.worst->wi),
+                     vec_text(d.worst->wo), vec_text(d.worst->shader), vec_text(d.worst->reference));
+        }
+        continue;
+      }
       fmt::print("  device: {}\n", d.device);
       fmt::print("    cases: {} (seed {}; grazing, on- and below-horizon pairs included)\n", d.cases, v.seed);
       fmt::print("    max relative error: {:.3g}   mean: {:.3g}   (|shader - reference| / max(|reference|, {:g} /sr))\n",
@@ -99,6 +154,7 @@ void run_export(const ShaderOptions& o, const std::string& model) {
   e.entry = o.entry;
   e.uniforms = o.uniforms;
   e.command = command_line(o, model);
+  e.ibl = !o.ibl.empty();
   const shaders::ShaderExport ex = unwrap(shaders::export_model(model, parse_assignments(o.params), e));
   if (!o.tables_out.empty() && ex.tables_data.empty()) {
     throw UsageError("--tables-out: the model '" + model + "' with these parameters reads no tables");
@@ -135,6 +191,11 @@ void add_shader_command(CLI::App& app, Command& command) {
       ->capture_default_str();
   sub->add_option("--tolerance", o->tolerance, "verify: the largest relative error that passes")->capture_default_str();
   sub->add_option("--seed", o->seed, "verify: seed of the direction pairs")->capture_default_str();
+  sub->add_option("--ibl", o->ibl,
+                  "export: also the environment lighting of `bake ibl`'s files (SH9 + split sum; ggx, filament); verify: "
+                  "check it under ENV (an environment image, baked with bake ibl's defaults, or a bake ibl directory)")
+      ->expected(0, 1);
+  sub->add_option("--ibl-size", o->ibl_size, "verify --ibl: the sphere's image size in pixels")->capture_default_str();
   sub->callback([o, &command, sub] {
     command.run = [o, sub] {
       const bool verify = !o->args.empty() && o->args[0] == "verify";
@@ -145,9 +206,14 @@ void add_shader_command(CLI::App& app, Command& command) {
       if (verify) {
         if (sub->count("--out") > 0) throw UsageError("--out: only for shader export (shader MODEL)");
         if (sub->count("--tables-out") > 0) throw UsageError("--tables-out: only for shader export (shader MODEL)");
-        run_verify(*o, model);
+        if (sub->count("--ibl-size") > 0 && sub->count("--ibl") == 0) throw UsageError("--ibl-size: only with --ibl");
+        run_verify(*o, model, sub->count("--ibl") > 0, sub->count("--tolerance") > 0);
       } else {
-        for (const char* flag : {"--source", "--cases", "--json", "--device", "--tolerance", "--seed"}) {
+        if (sub->count("--ibl") > 0 && !o->ibl.empty()) {
+          throw UsageError("--ibl: export takes no value (put --ibl after MODEL); verify takes the environment");
+        }
+        if (sub->count("--ibl") > 0) o->ibl = "yes";
+        for (const char* flag : {"--source", "--cases", "--json", "--device", "--tolerance", "--seed", "--ibl-size"}) {
           if (sub->count(flag) > 0) throw UsageError(std::string(flag) + ": only for shader verify");
         }
         run_export(*o, model);

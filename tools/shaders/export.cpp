@@ -179,6 +179,56 @@ Result<std::vector<std::uint8_t>> pack_std140(const StructDecl& decl, const Kern
   return bytes;
 }
 
+std::string ibl_fetch_declarations(Lang lang) {
+  std::string s =
+      "// ---- the texel fetches of the split sum's files (`shadelab bake ibl`), read with texelFetch: no filtering,\n"
+      "// the kernels below interpolate (seamlessly across cube faces) as the C++ does. Textures:\n"
+      "//   shadelab_ggx_chain        specular.ktx2 as a 2D array texture: layer = face (+X, -X, +Y, -Y, +Z, -Z),\n"
+      "//                             mip level i = chain level i (upload every level)\n"
+      "//   shadelab_dfg              dfg.ktx2: R = A (scale of f0), G = B (bias)\n"
+      "//   shadelab_split_sum_lobes  split_sum_lobes.json's texels[j * size + i] at (i, j): RGBA = angle_a,\n"
+      "//                             roughness_a, angle_b, roughness_b (RGBA32F)\n"
+      "// Define SHADELAB_IBL_FETCHES before this file and define cube_texel, cube_size, dfg_texel,\n"
+      "// shadelab_dfg_size, split_sum_lobe_texel and shadelab_split_sum_lobe_size yourself to read other storage.\n";
+  if (lang == Lang::hlsl) {
+    s += "// Define SHADELAB_IBL_CHAIN_REGISTER, SHADELAB_IBL_DFG_REGISTER, SHADELAB_IBL_LOBES_REGISTER (e.g. : register(t4))\n"
+         "// to bind them.\n"
+         "#ifndef SHADELAB_IBL_FETCHES\n#define SHADELAB_IBL_FETCHES\n"
+         "#ifndef SHADELAB_IBL_CHAIN_REGISTER\n#define SHADELAB_IBL_CHAIN_REGISTER\n#endif\n"
+         "#ifndef SHADELAB_IBL_DFG_REGISTER\n#define SHADELAB_IBL_DFG_REGISTER\n#endif\n"
+         "#ifndef SHADELAB_IBL_LOBES_REGISTER\n#define SHADELAB_IBL_LOBES_REGISTER\n#endif\n"
+         "Texture2DArray<float4> shadelab_ggx_chain SHADELAB_IBL_CHAIN_REGISTER;\n"
+         "Texture2D<float4> shadelab_dfg SHADELAB_IBL_DFG_REGISTER;\n"
+         "Texture2D<float4> shadelab_split_sum_lobes SHADELAB_IBL_LOBES_REGISTER;\n"
+         "float3 cube_texel(int cube, int face, int x, int y) { return shadelab_ggx_chain.Load(int4(x, y, face, cube)).rgb; }\n"
+         "int cube_size(int cube) {\n  uint w, h, layers, levels;\n"
+         "  shadelab_ggx_chain.GetDimensions(uint(cube), w, h, layers, levels);\n  return int(w);\n}\n"
+         "float dfg_texel(int x, int y, int channel) { return shadelab_dfg.Load(int3(x, y, 0))[channel]; }\n"
+         "int shadelab_dfg_size() {\n  uint w, h;\n  shadelab_dfg.GetDimensions(w, h);\n  return int(w);\n}\n"
+         "float split_sum_lobe_texel(int x, int y, int channel) { return shadelab_split_sum_lobes.Load(int3(x, y, 0))[channel]; }\n"
+         "int shadelab_split_sum_lobe_size() {\n  uint w, h;\n  shadelab_split_sum_lobes.GetDimensions(w, h);\n  return int(w);\n}\n"
+         "#endif  // SHADELAB_IBL_FETCHES\n\n";
+    return s;
+  }
+  s += "// Define SHADELAB_IBL_CHAIN_LAYOUT, SHADELAB_IBL_DFG_LAYOUT, SHADELAB_IBL_LOBES_LAYOUT (e.g. layout(binding = 4))\n"
+       "// to bind them.\n"
+       "#ifndef SHADELAB_IBL_FETCHES\n#define SHADELAB_IBL_FETCHES\n"
+       "#ifndef SHADELAB_IBL_CHAIN_LAYOUT\n#define SHADELAB_IBL_CHAIN_LAYOUT\n#endif\n"
+       "#ifndef SHADELAB_IBL_DFG_LAYOUT\n#define SHADELAB_IBL_DFG_LAYOUT\n#endif\n"
+       "#ifndef SHADELAB_IBL_LOBES_LAYOUT\n#define SHADELAB_IBL_LOBES_LAYOUT\n#endif\n"
+       "SHADELAB_IBL_CHAIN_LAYOUT uniform highp sampler2DArray shadelab_ggx_chain;\n"
+       "SHADELAB_IBL_DFG_LAYOUT uniform highp sampler2D shadelab_dfg;\n"
+       "SHADELAB_IBL_LOBES_LAYOUT uniform highp sampler2D shadelab_split_sum_lobes;\n"
+       "vec3 cube_texel(int cube, int face, int x, int y) { return texelFetch(shadelab_ggx_chain, ivec3(x, y, face), cube).rgb; }\n"
+       "int cube_size(int cube) { return textureSize(shadelab_ggx_chain, cube).x; }\n"
+       "float dfg_texel(int x, int y, int channel) { return texelFetch(shadelab_dfg, ivec2(x, y), 0)[channel]; }\n"
+       "int shadelab_dfg_size() { return textureSize(shadelab_dfg, 0).x; }\n"
+       "float split_sum_lobe_texel(int x, int y, int channel) { return texelFetch(shadelab_split_sum_lobes, ivec2(x, y), 0)[channel]; }\n"
+       "int shadelab_split_sum_lobe_size() { return textureSize(shadelab_split_sum_lobes, 0).x; }\n"
+       "#endif  // SHADELAB_IBL_FETCHES\n\n";
+  return s;
+}
+
 Result<std::string> kernel_section(const std::vector<std::string>& names, Lang lang) {
   const KernelLibrary& lib = KernelLibrary::embedded();
   std::string out;
@@ -186,6 +236,7 @@ Result<std::string> kernel_section(const std::vector<std::string>& names, Lang l
     const KernelFile& file = lib.files()[f];
     auto text = translate(file.text, lang, file.name);
     if (!text) return text.error();
+    if (file.name == "cube.sl") out += ibl_fetch_declarations(lang);  // cube.sl and game_ibl.sl call the fetches
     const std::string guard = "SHADELAB_KERNEL_" + upper_identifier(file.name);
     out += "#ifndef " + guard + "\n#define " + guard + "\n// ---- kernels/" + file.name + "\n";
     if (file.name == kGgxEnergyTableFile) out += ggx_energy_block_declaration(lang);
@@ -228,9 +279,18 @@ Result<ShaderExport> export_model(std::string_view model, const ParamAssignments
   ex.params_type = *ptype;
   ex.block_name = ex.entry + "_block";
 
-  const std::vector<std::string> names = {k + "_prepare",          k + "_eval",         "punctual_game",
-                                           "punctual_radiometric",   "sh9_irradiance",    "sh9_irradiance_game",
-                                           "sh9_irradiance_game_wrapped"};
+  std::vector<std::string> names = {k + "_prepare",          k + "_eval",         "punctual_game",
+                                     "punctual_radiometric",   "sh9_irradiance",    "sh9_irradiance_game",
+                                     "sh9_irradiance_game_wrapped"};
+  if (options.ibl) {
+    if (!lib.defining_file(k + "_split_sum")) {
+      return make_error("--ibl: the model '" + info->name + "' has no split-sum description (its kernel defines no " + k +
+                        "_split_sum); the split sum is for " + split_sum_model_names());
+    }
+    names.push_back(k + "_split_sum");
+    names.push_back("game_ibl_ambient");
+    ex.ibl_entry = ex.entry + "_ambient_game";
+  }
   auto kernels = kernel_section(names, lang);
   if (!kernels) return kernels.error();
   for (std::size_t f : lib.closure(names)) {
@@ -269,7 +329,15 @@ Result<ShaderExport> export_model(std::string_view model, const ParamAssignments
   s += "//   " + v3 + " " + ex.entry + "_punctual_radiometric(" + v3 + " wi, " + v3 + " wo, " + v3 +
        " e_perp)  f E N.L, E the irradiance facing the light in W/m^2\n";
   s += "//   " + v3 + " sh9_irradiance_game(Sh9Coefficients sh, " + v3 +
-       " n), sh9_irradiance(...), sh9_irradiance_game_wrapped(sh, n, w): SH9 irradiance\n\n";
+       " n), sh9_irradiance(...), sh9_irradiance_game_wrapped(sh, n, w): SH9 irradiance\n";
+  if (options.ibl) {
+    s += "//   " + v3 + " " + ex.ibl_entry + "(" + v3 + " n, " + v3 +
+         " v, Sh9Coefficients sh, int levels, int mapping)  environment lighting (game units) from the files of\n"
+         "//     `shadelab bake ibl`: n the unit normal, v the unit direction to the viewer (world space), sh the\n"
+         "//     radiance_coefficients of sh9.json, levels the specular chain's level count, mapping its\n"
+         "//     shadelab.mip_mapping (GGX_MIP_MAPPING_LINEAR or GGX_MIP_MAPPING_FILAMENT); the textures below\n";
+  }
+  s += "\n";
   s += *kernels;
 
   s += "// ---- the model '" + info->name + "' and its parameters\n";
@@ -307,6 +375,17 @@ Result<ShaderExport> export_model(std::string_view model, const ParamAssignments
     s += "  return p;\n}\n\n";
     s += v3 + " " + ex.entry + "(" + v3 + " wi, " + v3 + " wo) {\n  return " + k + "_eval(" + k + "_prepare(" + ex.entry +
          "_params()), wi, wo);\n}\n\n";
+  }
+  if (options.ibl) {
+    const std::string params_expr = ex.entry + (options.uniforms ? "_params" : "_params()");
+    s += "// The split sum's lookup: SPLIT_SUM_LOOKUP_LOBES (shadelab's default and `render --mode game`'s), or define\n"
+         "// SHADELAB_SPLIT_SUM_LOOKUP before this file as SPLIT_SUM_LOOKUP_MIRROR (Karis 2013 as published) or\n"
+         "// SPLIT_SUM_LOOKUP_DOMINANT (neither reads shadelab_split_sum_lobes).\n"
+         "#ifndef SHADELAB_SPLIT_SUM_LOOKUP\n#define SHADELAB_SPLIT_SUM_LOOKUP SPLIT_SUM_LOOKUP_LOBES\n#endif\n";
+    s += "// Environment lighting in game units: SH9 diffuse plus the split-sum specular (kernels/game_ibl.sl).\n";
+    s += v3 + " " + ex.ibl_entry + "(" + v3 + " n, " + v3 + " v, Sh9Coefficients sh, int levels, int mapping) {\n  return game_ibl_ambient(n, v, " +
+         k + "_split_sum(" + k + "_prepare(" + params_expr + ")), sh9_irradiance_game(sh, n), SHADELAB_SPLIT_SUM_LOOKUP, levels,\n"
+         "                          mapping, shadelab_dfg_size(), shadelab_split_sum_lobe_size());\n}\n\n";
   }
   s += "// Punctual light in game units: exit radiance pi f c N.L for a light of colour c from wi.\n";
   s += v3 + " " + ex.entry + "_punctual_game(" + v3 + " wi, " + v3 + " wo, " + v3 + " colour) {\n  return punctual_game(" +

@@ -27,6 +27,11 @@ struct ExportOptions {
   std::string entry;      // empty: default_entry(model)
   bool uniforms = false;  // parameters in a uniform block instead of baked constants
   std::string command;    // the command line that made the file, for its header (may be empty)
+  // Also export the environment lighting of the files `shadelab bake ibl` writes: SH9 diffuse plus the split
+  // sum (the GGX chain read seamlessly, the DFG table, the lobe-matched lookup), the entry ENTRY_ambient_game
+  // (kernels/game_ibl.sl game_ibl_ambient). Only for the models whose kernel writes a split-sum description
+  // (KERNEL_split_sum: ggx, filament).
+  bool ibl = false;
 };
 
 // Where a field of the parameter struct lies in the uniform block (std140; docs/shaders.md).
@@ -49,7 +54,21 @@ struct ShaderExport {
   // (kernel_library.h, kGgxEnergyBlock) and its bytes (std140, little-endian float); both empty otherwise.
   std::string tables_block;
   std::vector<std::uint8_t> tables_data;
+  std::string ibl_entry;  // ibl: ENTRY_ambient_game; empty otherwise
 };
+
+// The texture names the exported IBL fetches read (docs/shaders.md): the GGX chain as a 2D array texture (layer
+// = face +X, -X, +Y, -Y, +Z, -Z; mip level i = chain level i), the DFG table (R = A, G = B) and the lobe table
+// (RGBA = angle_a, roughness_a, angle_b, roughness_b).
+inline constexpr const char* kIblChainTexture = "shadelab_ggx_chain";
+inline constexpr const char* kIblDfgTexture = "shadelab_dfg";
+inline constexpr const char* kIblLobesTexture = "shadelab_split_sum_lobes";
+
+// The language's definitions of the IBL fetches the kernels call (kernels.h: cube_texel, cube_size, dfg_texel,
+// split_sum_lobe_texel) and of shadelab_dfg_size() and shadelab_split_sum_lobe_size(), over the three textures
+// with texelFetch (HLSL: Load), inside #ifndef SHADELAB_IBL_FETCHES so that an application (or the verifier)
+// can define them over its own storage first.
+std::string ibl_fetch_declarations(Lang lang);
 
 // brdf_<model> with '-' -> '_': brdf_cook_torrance.
 std::string default_entry(std::string_view model);

@@ -8,7 +8,7 @@
 
 namespace shadelab::shaders {
 
-std::string compute_harness(Lang lang, const std::string& code, const std::string& expression) {
+std::string compute_harness(Lang lang, const std::string& code, const std::string& expression, const std::string& prelude) {
   std::string s;
   if (lang == Lang::hlsl) {
     s += "[[vk::binding(1)]] StructuredBuffer<float4> shadelab_in;\n"
@@ -21,6 +21,7 @@ std::string compute_harness(Lang lang, const std::string& code, const std::strin
          "layout(std430, binding = 2) writeonly buffer ShadelabOut { vec4 shadelab_out[]; };\n"
          "#define SHADELAB_TABLES_LAYOUT layout(std140, binding = 3)\n";
   }
+  s += prelude;
   s += "#line 1\n" + code;
   if (!code.empty() && code.back() != '\n') s += "\n";
   if (lang == Lang::hlsl) {

@@ -17,7 +17,9 @@ namespace shadelab::shaders {
 // evaluates `expression` (written in terms of wi and wo, of type vec3/float3) and writes vec4(expression, 0)
 // to the storage buffer at binding 2. 64 invocations per work group. GLSL ES runs as ESSL 3.10 (compute needs
 // 3.10; the code itself is checked as ESSL 3.00 by validate_essl300).
-std::string compute_harness(Lang lang, const std::string& code, const std::string& expression);
+// `prelude`, when given, goes before the code's `#line 1` (the IBL verification's fetches over the storage
+// buffer at binding 4).
+std::string compute_harness(Lang lang, const std::string& code, const std::string& expression, const std::string& prelude = {});
 
 // glslangValidator's path: $SHADELAB_GLSLANG, else glslangValidator on PATH; empty if neither.
 std::string glslang_program();

@@ -34,6 +34,23 @@ std::vector<Token> code_tokens(const std::string& text) {
   return out;
 }
 
+// Words GLSL 4.50, GLSL ES 3.00 or HLSL reserve that are plain identifiers in C++: a kernel that names a
+// variable or field so would translate to a file no shader compiler accepts (GLSL 4.50 section 3.6, ES 3.00
+// section 3.7, HLSL's keyword list; the ones a formula could plausibly use).
+bool reserved_in_shaders(const std::string& w) {
+  static const char* const words[] = {
+      "in", "out", "inout", "uniform", "buffer", "shared", "layout", "centroid", "flat", "smooth", "sample",
+      "patch", "precision", "lowp", "mediump", "highp", "attribute", "varying", "invariant", "precise", "coherent",
+      "filter", "input", "output", "discard", "common", "partition", "active", "superp", "texture", "image",
+      "subroutine", "half", "fixed", "sampler", "register", "packoffset", "matrix", "vector", "line", "point",
+      "triangle", "lineadj", "triangleadj", "snorm", "unorm", "groupshared", "nointerpolation", "linear",
+      "noperspective", "row_major", "column_major", "technique", "pass", "string", "cbuffer", "tbuffer"};
+  for (const char* r : words) {
+    if (w == r) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 Result<KernelLibrary> KernelLibrary::parse(std::vector<KernelFile> files) {
@@ -70,8 +87,12 @@ Result<KernelLibrary> KernelLibrary::parse(std::vector<KernelFile> files) {
       if (v <= 0 || v > 4096) return make_error(where(k) + "array size " + std::to_string(v) + " is out of range");
       return static_cast<int>(v);
     };
-    for (const Token& tok : t) {
-      if (tok.kind == TokenKind::identifier) info.uses.insert(tok.text);
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      if (t[k].kind != TokenKind::identifier) continue;
+      if (reserved_in_shaders(t[k].text)) {
+        return make_error(where(k) + "'" + t[k].text + "' is a reserved word in GLSL or HLSL: name it otherwise");
+      }
+      info.uses.insert(t[k].text);
     }
     int depth = 0;
     for (std::size_t k = 0; k < t.size(); ++k) {

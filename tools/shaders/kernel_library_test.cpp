@@ -88,6 +88,10 @@ TEST(KernelLibrary, ErrorsNameTheFileAndName) {
   ASSERT_TRUE(ok.has_value()) << ok.error().message;
   EXPECT_EQ(ok->find_struct("P")->fields[0].array_size, 4);
   EXPECT_EQ(ok->find_struct("P")->fields[1].scalar_count(), 3);
+  // A GLSL keyword as a variable (what game_ibl.sl once had: `DfgScaleBias out;`) is refused with its line.
+  auto reserved = KernelLibrary::parse({{"a.sl", "inline real f(real x) {\n  real out = x;\n  return out;\n}\n"}});
+  ASSERT_FALSE(reserved.has_value());
+  EXPECT_EQ(reserved.error().message, "kernel a.sl:2: 'out' is a reserved word in GLSL or HLSL: name it otherwise");
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "shadelab/sampling/rng.h"
 #include "sl_lexer.h"
 #include "vulkan_compute.h"
+#include "verify_ibl.h"
 #include "webgl.h"
 
 namespace shadelab::shaders {
@@ -179,7 +180,9 @@ bool defines_function(const std::string& code, const std::string& name) {
   return false;
 }
 
-DeviceReport combine(const std::vector<DeviceReport>& reports) {
+}  // namespace
+
+DeviceReport combine_reports(const std::vector<DeviceReport>& reports) {
   if (reports.size() == 1) return reports.front();
   DeviceReport c;
   c.cases = reports.front().cases;
@@ -196,7 +199,6 @@ DeviceReport combine(const std::vector<DeviceReport>& reports) {
   return c;
 }
 
-}  // namespace
 
 Result<VerifyReport> verify_shader(const VerifyOptions& o) {
   if (o.cases < 1 || o.cases > 1000000) return make_error("--cases: " + std::to_string(o.cases) + " is out of range [1, 1000000]");
@@ -206,6 +208,7 @@ Result<VerifyReport> verify_shader(const VerifyOptions& o) {
   eo.lang = o.lang;
   eo.entry = o.entry;
   eo.uniforms = o.uniforms;
+  eo.ibl = !o.ibl_dir.empty();
   auto ex = export_model(o.model, o.params, eo);
   if (!ex) return ex.error();
   auto brdf = make_brdf(o.model, o.params);
@@ -224,10 +227,12 @@ Result<VerifyReport> verify_shader(const VerifyOptions& o) {
     if (!text) return make_error("--source: " + text.error().message);
     code = strip_version_directive(*text);
     display = o.source;
-    if (!defines_function(code, ex->entry)) {
-      return make_error(o.source + ": defines no function '" + ex->entry + "' (name the entry with --entry NAME)");
+    const std::string& needed = eo.ibl ? ex->ibl_entry : ex->entry;
+    if (!defines_function(code, needed)) {
+      return make_error(o.source + ": defines no function '" + needed + "' (name the entry with --entry NAME)");
     }
   }
+  if (eo.ibl) return verify_ibl(o, *ex, code, display);
   const std::string expression = ex->entry + "(wi, wo)";
   const std::vector<float> pairs = verification_pairs(o.cases, o.seed);
   const std::vector<std::uint8_t> uniform = o.uniforms ? ex->uniform_data : std::vector<std::uint8_t>{};
@@ -253,7 +258,7 @@ Result<VerifyReport> verify_shader(const VerifyOptions& o) {
     if (!web) return web.error();
     report.devices.push_back(compare_outputs("Chromium WebGL 2: " + web->renderer, pairs, web->output, ref));
   }
-  report.combined = combine(report.devices);
+  report.combined = combine_reports(report.devices);
   report.passed = report.combined.nonfinite == 0 && report.combined.max_rel_error <= o.tolerance;
   return report;
 }

@@ -54,6 +54,9 @@ struct DeviceReport {
 DeviceReport compare_outputs(const std::string& device, const std::vector<float>& input, const std::vector<float>& output,
                              const std::function<Rgb(const Vec3& wi, const Vec3& wo)>& reference);
 
+// Several devices' reports as one: one device, that device; two, the worse of each figure (docs/shaders.md).
+DeviceReport combine_reports(const std::vector<DeviceReport>& reports);
+
 enum class VerifyDevice { all, vulkan, webgl2 };
 
 struct VerifyOptions {
@@ -67,6 +70,10 @@ struct VerifyOptions {
   VerifyDevice device = VerifyDevice::all;  // GLSL ES: lavapipe and WebGL 2; the others run on Vulkan only
   double tolerance = kDefaultTolerance;
   std::uint64_t seed = kDefaultSeed;
+  // Non-empty: verify the environment lighting (verify_ibl.h) with the files `bake ibl` wrote in this
+  // directory, on a sphere of ibl_size x ibl_size pixels, instead of f_r on direction pairs.
+  std::string ibl_dir;
+  int ibl_size = 128;
 };
 
 struct VerifyReport {
@@ -75,6 +82,7 @@ struct VerifyReport {
   DeviceReport combined;  // one device: that device; two: the worse of each figure (docs/shaders.md)
   double tolerance = kDefaultTolerance;
   bool passed = false;
+  std::size_t pixels = 0;  // ibl: the pixels compared (cases of each device)
 };
 
 // Bad input (unknown model or parameter, unreadable --source, a file that does not compile, a missing entry)

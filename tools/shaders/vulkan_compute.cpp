@@ -56,7 +56,7 @@ struct ComputeJob::Impl {
     VkDeviceSize size = 0;
     void* mapped = nullptr;
   };
-  Buffer uniform, input, output, tables;
+  Buffer uniform, input, output, tables, texels;
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
   VkShaderModule module = VK_NULL_HANDLE;
@@ -75,7 +75,7 @@ struct ComputeJob::Impl {
     if (module) vkDestroyShaderModule(d, module, nullptr);
     if (pipeline_layout) vkDestroyPipelineLayout(d, pipeline_layout, nullptr);
     if (set_layout) vkDestroyDescriptorSetLayout(d, set_layout, nullptr);
-    for (Buffer* b : {&uniform, &input, &output, &tables}) {
+    for (Buffer* b : {&uniform, &input, &output, &tables, &texels}) {
       if (b->mapped) vkUnmapMemory(d, b->memory);
       if (b->buffer) vkDestroyBuffer(d, b->buffer, nullptr);
       if (b->memory) vkFreeMemory(d, b->memory, nullptr);
@@ -195,7 +195,8 @@ Result<std::shared_ptr<VulkanDevice>> VulkanDevice::open() {
 Result<std::unique_ptr<ComputeJob>> VulkanDevice::prepare(const std::vector<std::uint32_t>& spirv,
                                                           const std::vector<float>& input,
                                                           const std::vector<std::uint8_t>& uniform,
-                                                          const std::vector<std::uint8_t>& tables) {
+                                                          const std::vector<std::uint8_t>& tables,
+                                                          const std::vector<float>& texels) {
   if (input.size() % 8 != 0) return make_error("Vulkan: the input holds 8 floats per case");
   const std::size_t cases = input.size() / 8;
   const std::size_t padded = std::max<std::size_t>(kGroup, (cases + kGroup - 1) / kGroup * kGroup);
@@ -213,6 +214,10 @@ Result<std::unique_ptr<ComputeJob>> VulkanDevice::prepare(const std::vector<std:
   const VkDeviceSize tables_size = std::max<std::size_t>(16, (tables.size() + 15) / 16 * 16);
   if (auto ok = j.make_buffer(j.tables, tables_size, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT); !ok) return ok.error();
   std::memset(j.tables.mapped, 0, tables_size);
+  const VkDeviceSize texels_size = std::max<std::size_t>(16, texels.size() * sizeof(float));
+  if (auto ok = j.make_buffer(j.texels, texels_size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT); !ok) return ok.error();
+  std::memset(j.texels.mapped, 0, texels_size);
+  if (!texels.empty()) std::memcpy(j.texels.mapped, texels.data(), texels.size() * sizeof(float));
   if (!tables.empty()) std::memcpy(j.tables.mapped, tables.data(), tables.size());
   std::memset(j.uniform.mapped, 0, uniform_size);
   if (!uniform.empty()) std::memcpy(j.uniform.mapped, uniform.data(), uniform.size());
@@ -220,16 +225,16 @@ Result<std::unique_ptr<ComputeJob>> VulkanDevice::prepare(const std::vector<std:
   std::memcpy(j.input.mapped, input.data(), input.size() * sizeof(float));
   std::memset(j.output.mapped, 0xff, j.output.size);  // NaN: a case the shader does not write reads as NaN
 
-  // 0: the parameter block, 1 and 2: the cases and the results, 3: the GGX energy tables' block.
-  VkDescriptorSetLayoutBinding bindings[4] = {};
-  for (std::uint32_t b = 0; b < 4; ++b) {
+  // 0: the parameter block, 1 and 2: the cases and the results, 3: the GGX energy tables' block, 4: texels.
+  VkDescriptorSetLayoutBinding bindings[5] = {};
+  for (std::uint32_t b = 0; b < 5; ++b) {
     bindings[b].binding = b;
     bindings[b].descriptorType = (b == 0 || b == 3) ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     bindings[b].descriptorCount = 1;
     bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
   }
   auto dsl = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-  dsl.bindingCount = 4;
+  dsl.bindingCount = 5;
   dsl.pBindings = bindings;
   if (VkResult r = vkCreateDescriptorSetLayout(d, &dsl, nullptr, &j.set_layout); r != VK_SUCCESS) return vk_error("vkCreateDescriptorSetLayout", r);
   auto pli = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
@@ -249,7 +254,7 @@ Result<std::unique_ptr<ComputeJob>> VulkanDevice::prepare(const std::vector<std:
   if (VkResult r = vkCreateComputePipelines(d, VK_NULL_HANDLE, 1, &cpi, nullptr, &j.pipeline); r != VK_SUCCESS) {
     return vk_error("vkCreateComputePipelines", r);
   }
-  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
+  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
   auto dpi = vk_struct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
   dpi.maxSets = 1;
   dpi.poolSizeCount = 2;
@@ -261,12 +266,13 @@ Result<std::unique_ptr<ComputeJob>> VulkanDevice::prepare(const std::vector<std:
   dsa.descriptorSetCount = 1;
   dsa.pSetLayouts = &j.set_layout;
   if (VkResult r = vkAllocateDescriptorSets(d, &dsa, &set); r != VK_SUCCESS) return vk_error("vkAllocateDescriptorSets", r);
-  VkDescriptorBufferInfo infos[4] = {{j.uniform.buffer, 0, VK_WHOLE_SIZE},
+  VkDescriptorBufferInfo infos[5] = {{j.uniform.buffer, 0, VK_WHOLE_SIZE},
                                      {j.input.buffer, 0, VK_WHOLE_SIZE},
                                      {j.output.buffer, 0, VK_WHOLE_SIZE},
-                                     {j.tables.buffer, 0, VK_WHOLE_SIZE}};
-  VkWriteDescriptorSet writes[4] = {};
-  for (std::uint32_t b = 0; b < 4; ++b) {
+                                     {j.tables.buffer, 0, VK_WHOLE_SIZE},
+                                     {j.texels.buffer, 0, VK_WHOLE_SIZE}};
+  VkWriteDescriptorSet writes[5] = {};
+  for (std::uint32_t b = 0; b < 5; ++b) {
     writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
     writes[b].dstSet = set;
     writes[b].dstBinding = b;
@@ -274,7 +280,7 @@ Result<std::unique_ptr<ComputeJob>> VulkanDevice::prepare(const std::vector<std:
     writes[b].descriptorType = bindings[b].descriptorType;
     writes[b].pBufferInfo = &infos[b];
   }
-  vkUpdateDescriptorSets(d, 4, writes, 0, nullptr);
+  vkUpdateDescriptorSets(d, 5, writes, 0, nullptr);
 
   auto cpci = vk_struct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
   cpci.queueFamilyIndex = m_impl->queue_family;
@@ -303,8 +309,8 @@ Result<std::unique_ptr<ComputeJob>> VulkanDevice::prepare(const std::vector<std:
 
 Result<std::vector<float>> VulkanDevice::run(const std::vector<std::uint32_t>& spirv, const std::vector<float>& input,
                                              const std::vector<std::uint8_t>& uniform,
-                                             const std::vector<std::uint8_t>& tables) {
-  auto job = prepare(spirv, input, uniform, tables);
+                                             const std::vector<std::uint8_t>& tables, const std::vector<float>& texels) {
+  auto job = prepare(spirv, input, uniform, tables, texels);
   if (!job) return job.error();
   if (auto ok = (*job)->execute(); !ok) return ok.error();
   return (*job)->output();

@@ -48,12 +48,15 @@ class VulkanDevice {
   // input: 8 floats per case (wi.xyz, 0, wo.xyz, 0); uniform: the bytes of the uniform block at binding 0
   // (may be empty); tables: those of the GGX energy tables' block at binding 3 (may be empty). The harness's
   // work groups are 64 wide; the buffers are padded to a whole number of them.
+  // texels: a read-only storage buffer at binding 4 (the IBL verification's baked textures; may be empty).
   Result<std::unique_ptr<ComputeJob>> prepare(const std::vector<std::uint32_t>& spirv, const std::vector<float>& input,
                                               const std::vector<std::uint8_t>& uniform,
-                                              const std::vector<std::uint8_t>& tables = {});
+                                              const std::vector<std::uint8_t>& tables = {},
+                                              const std::vector<float>& texels = {});
   // prepare + execute + output.
   Result<std::vector<float>> run(const std::vector<std::uint32_t>& spirv, const std::vector<float>& input,
-                                 const std::vector<std::uint8_t>& uniform, const std::vector<std::uint8_t>& tables = {});
+                                 const std::vector<std::uint8_t>& uniform, const std::vector<std::uint8_t>& tables = {},
+                                 const std::vector<float>& texels = {});
 
   struct Impl;  // the Vulkan handles, shared with the jobs (a job keeps the device alive)
 

@@ -134,6 +134,31 @@ std::string page(const std::string& programs_json, const std::string& wi_b64, co
           const tbo = gl.createBuffer(); gl.bindBuffer(gl.UNIFORM_BUFFER, tbo); gl.bufferData(gl.UNIFORM_BUFFER, tbytes, gl.STATIC_DRAW);
           gl.uniformBlockBinding(prog, index, 1); gl.bindBufferBase(gl.UNIFORM_BUFFER, 1, tbo);
         }
+        if (p.ibl) {  // the exported IBL fetches' textures (texelFetch only: NEAREST, no filtering involved)
+          const chain = new Float32Array(bytes(p.ibl.chain).buffer);
+          gl.activeTexture(gl.TEXTURE3);
+          const ct = gl.createTexture(); gl.bindTexture(gl.TEXTURE_2D_ARRAY, ct);
+          gl.texStorage3D(gl.TEXTURE_2D_ARRAY, p.ibl.levels, gl.RGBA32F, p.ibl.size, p.ibl.size, 6);
+          let off = 0;
+          for (let l = 0; l < p.ibl.levels; ++l) {
+            const s = Math.max(1, p.ibl.size >> l);
+            gl.texSubImage3D(gl.TEXTURE_2D_ARRAY, l, 0, 0, 0, s, s, 6, gl.RGBA, gl.FLOAT, chain, off);
+            off += s * s * 6 * 4;
+          }
+          gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.NEAREST_MIPMAP_NEAREST);
+          gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+          gl.uniform1i(gl.getUniformLocation(prog, 'shadelab_ggx_chain'), 3);
+          const table = function (unit, n, b64data, name) {
+            gl.activeTexture(gl.TEXTURE0 + unit);
+            const t = gl.createTexture(); gl.bindTexture(gl.TEXTURE_2D, t);
+            gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST); gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+            gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, n, n, 0, gl.RGBA, gl.FLOAT, new Float32Array(bytes(b64data).buffer));
+            gl.uniform1i(gl.getUniformLocation(prog, name), unit);
+          };
+          table(4, p.ibl.dfg_size, p.ibl.dfg, 'shadelab_dfg');
+          table(5, p.ibl.lobe_size, p.ibl.lobes, 'shadelab_split_sum_lobes');
+          gl.activeTexture(gl.TEXTURE0);
+        }
         gl.viewport(0, 0, W, H); gl.disable(gl.BLEND); gl.disable(gl.DITHER);
         gl.drawArrays(gl.TRIANGLES, 0, 3);
         const result = new Float32Array(W * H * 4);
@@ -206,8 +231,17 @@ Result<std::vector<Result<WebglResult>>> run_webgl_batch(const std::vector<Webgl
             "  vec3 wi = texelFetch(shadelab_wi_tex, shadelab_p, 0).xyz;\n"
             "  vec3 wo = texelFetch(shadelab_wo_tex, shadelab_p, 0).xyz;\n"
             "  shadelab_color = vec4(" + p.expression + ", 0.0);\n}\n";
-    list.push_back({{"frag", b64_text(frag)}, {"uniform", base64(p.uniform.data(), p.uniform.size())}, {"block", p.block_name},
-                    {"tables", base64(p.tables.data(), p.tables.size())}});
+    nlohmann::json entry = {{"frag", b64_text(frag)}, {"uniform", base64(p.uniform.data(), p.uniform.size())}, {"block", p.block_name},
+                            {"tables", base64(p.tables.data(), p.tables.size())}};
+    if (p.ibl.chain_size > 0) {
+      const auto b64f = [](const std::vector<float>& v) {
+        return base64(reinterpret_cast<const std::uint8_t*>(v.data()), v.size() * sizeof(float));
+      };
+      entry["ibl"] = {{"size", p.ibl.chain_size}, {"levels", p.ibl.chain_levels}, {"chain", b64f(p.ibl.chain)},
+                      {"dfg_size", p.ibl.dfg_size}, {"dfg", b64f(p.ibl.dfg)}, {"lobe_size", p.ibl.lobe_size},
+                      {"lobes", b64f(p.ibl.lobes)}};
+    }
+    list.push_back(std::move(entry));
   }
 
   TempDir dir("shadelab-webgl");
@@ -284,7 +318,7 @@ Result<std::vector<Result<WebglResult>>> run_webgl_batch(const std::vector<Webgl
 Result<WebglResult> run_webgl(const std::string& code, const std::string& expression, const std::vector<float>& input,
                               const std::vector<std::uint8_t>& uniform, const std::string& block_name,
                               const std::string& display_name, const std::vector<std::uint8_t>& tables) {
-  auto batch = run_webgl_batch({{code, expression, uniform, block_name, display_name, tables}}, input);
+  auto batch = run_webgl_batch({{code, expression, uniform, block_name, display_name, tables, {}}}, input);
   if (!batch) return batch.error();
   return std::move(batch->front());
 }

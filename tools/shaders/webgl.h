@@ -24,6 +24,19 @@ std::string base64(const std::uint8_t* data, std::size_t n);
 // $SHADELAB_CHROMIUM, else chromium (or chromium-browser) on PATH; empty if none.
 std::string chromium_program();
 
+// The textures of the exported IBL fetches (export.h ibl_fetch_declarations), RGBA32F, bound to texture units
+// 3, 4, 5 as shadelab_ggx_chain (a 2D array texture of 6 layers and chain_levels mip levels), shadelab_dfg and
+// shadelab_split_sum_lobes. Texels: chain level by level, each face by face, rows top to bottom, 4 floats each.
+struct WebglIblTextures {
+  int chain_size = 0;  // 0: no IBL textures
+  int chain_levels = 0;
+  std::vector<float> chain;
+  int dfg_size = 0;
+  std::vector<float> dfg;
+  int lobe_size = 0;
+  std::vector<float> lobes;
+};
+
 struct WebglProgram {
   std::string code;        // a GLSL ES 3.00 function file
   std::string expression;  // in terms of vec3 wi, wo
@@ -31,6 +44,7 @@ struct WebglProgram {
   std::string block_name;
   std::string display_name;  // names the code in compiler errors
   std::vector<std::uint8_t> tables;  // non-empty: the bytes of the GGX energy tables' block (ShadelabGgxEnergy)
+  WebglIblTextures ibl;
 };
 
 // Runs several programs over the same cases in one browser start (a start costs seconds); one result each.

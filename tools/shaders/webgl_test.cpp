@@ -25,7 +25,7 @@ TEST(WebGL2, EveryModelBakedAndUniformAgreesWithTheReference) {
       auto ex = export_model(m.name, {}, o);
       ASSERT_TRUE(ex.has_value()) << m.name;
       programs.push_back({ex->text, ex->entry + "(wi, wo)", uniforms ? ex->uniform_data : std::vector<std::uint8_t>{},
-                          ex->block_name, m.name + ".essl", ex->tables_data});
+                          ex->block_name, m.name + ".essl", ex->tables_data, {}});
       labels.push_back(m.name + (uniforms ? " --uniforms" : ""));
       refs.push_back(std::move(make_brdf(m.name)).value());
     }
@@ -50,7 +50,7 @@ TEST(WebGL2, ACompileErrorNamesTheFileAndLine) {
   const std::vector<float> pairs = verification_pairs(64, kDefaultSeed);
   const std::string good = "vec3 f(vec3 wi, vec3 wo) { return vec3(wi.z); }\n";
   const std::string bad = "vec3 f(vec3 wi, vec3 wo) {\n  return vec3(undeclared_name);\n}\n";
-  auto batch = run_webgl_batch({{bad, "f(wi, wo)", {}, "", "bad.essl", {}}, {good, "f(wi, wo)", {}, "", "good.essl", {}}}, pairs);
+  auto batch = run_webgl_batch({{bad, "f(wi, wo)", {}, "", "bad.essl", {}, {}}, {good, "f(wi, wo)", {}, "", "good.essl", {}, {}}}, pairs);
   ASSERT_TRUE(batch.has_value()) << batch.error().message;
   ASSERT_EQ(batch->size(), 2u);
   ASSERT_FALSE((*batch)[0].has_value());

@@ -23,13 +23,9 @@
 
 #include "shadelab/color/rgb.h"
 #include "shadelab/core/vec.h"
+#include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
-
-namespace kernel {
-struct FilamentState;
-struct GgxState;
-}  // namespace kernel
 
 struct BrdfSample {
   Vec3 wi{0.0, 0.0, 1.0};
@@ -64,20 +60,15 @@ struct KernelBinding {
   }
 };
 
-// What the split-sum specular ambient (kernels/game_ambient.sl game_split_sum_specular) needs of a
-// microfacet-GGX BRDF, read from the BRDF itself (so a textured hit's own roughness and f0 are used):
-// - roughness: the perceptual roughness sqrt(alpha) (perceptual_roughness_from_alpha, microfacet.h), alpha =
-//   sqrt(alpha_x alpha_y) for an anisotropic lobe (an approximation, as engines do);
-// - f0, f90: Schlick's reflectance at normal incidence and at grazing, times the model's specular tint;
-// - the energy terms the model adds, evaluated by the renderer with E = A + B of its DFG table: a multiplicative
-//   compensation 1 + f0 (1/E - 1) (kernels/filament.sl filament_energy_compensation) or a Kulla-Conty lobe
-//   (kernels/ggx_energy.sl ggx_ms_albedo): the state that holds its numbers, or null.
+// What the split-sum environment lighting (kernels/game_ibl.sl) needs of a microfacet-GGX BRDF, read from the
+// BRDF itself (so a textured hit's own roughness and f0 are used): the model's kernel description
+// (kernels/split_sum.sl SplitSumMaterial: diffuse albedo, perceptual roughness, f0, f90 and the energy terms,
+// written by the model's own kernel, e.g. ggx.sl ggx_split_sum), the text the exported shaders run too.
 struct SplitSumInputs {
-  double roughness = 0.0;
-  Rgb f0;
-  Rgb f90;
-  const kernel::FilamentState* filament = nullptr;  // multiplicative energy compensation on: its state
-  const kernel::GgxState* ggx_ms = nullptr;          // Kulla-Conty lobe on: its state
+  kernel::SplitSumMaterial material;
+  double roughness() const { return material.roughness; }
+  Rgb f0() const { return Rgb(material.f0); }
+  Rgb f90() const { return Rgb(material.f90); }
 };
 
 // The direction test of eval_batch_checked and of the Python module's direction rule: |v|^2 within 4 ulp of

@@ -37,14 +37,8 @@ std::optional<KernelBinding> Filament::kernel_binding() const {
 
 // The split sum's inputs (brdf.h SplitSumInputs): roughness sqrt(alpha), its f0 and f90 = 1, and the
 // multiplicative energy compensation when it is on.
-std::optional<SplitSumInputs> Filament::split_sum_inputs() const {
-  SplitSumInputs in;
-  in.roughness = perceptual_roughness_from_alpha(m_k.alpha);
-  in.f0 = Rgb(m_k.f0);
-  in.f90 = Rgb::gray(1.0);
-  if (m_k.energy_compensation == 1) in.filament = &m_k;
-  return in;
-}
+// The model's kernel writes it (kernels/filament.sl filament_split_sum), so the exported shaders read the same.
+std::optional<SplitSumInputs> Filament::split_sum_inputs() const { return SplitSumInputs{kernel::filament_split_sum(m_k)}; }
 
 bool Filament::is_reciprocal() const { return !(m_p.energy_compensation && Rgb(m_k.f0).max_component() > 0.0); }
 

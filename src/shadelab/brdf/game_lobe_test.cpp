@@ -196,20 +196,23 @@ TEST(GameLobe, EachModelAnswersItsChainExponentGlossKindWrapAndSplitSum) {
     EXPECT_EQ((*f)->split_sum_inputs().has_value(), c.split_sum) << c.model;
   }
   // The split sum's inputs: roughness sqrt(alpha) (the geometric mean of an anisotropic pair), f0 and f90.
-  const auto g = (*make_brdf("ggx", {{"alpha_x", "0.1"}, {"alpha_y", "0.4"}, {"f", "schlick"}, {"f0", "0.04"}, {"ks", "0.5"}}))
+  const auto g = (*make_brdf("ggx", {{"alpha_x", "0.1"}, {"alpha_y", "0.4"}, {"f", "schlick"}, {"f0", "0.04"}, {"ks", "0.5"}, {"kd", "0.25"}}))
                      ->split_sum_inputs();
   ASSERT_TRUE(g.has_value());
-  EXPECT_NEAR(g->roughness, std::sqrt(0.2), 1e-15);
-  EXPECT_NEAR(g->f0.g, 0.02, 1e-15);  // ks f0
-  EXPECT_EQ(g->f90.g, 0.5);           // ks
-  EXPECT_EQ(g->ggx_ms, nullptr);
+  EXPECT_NEAR(g->roughness(), std::sqrt(0.2), 1e-15);
+  EXPECT_NEAR(g->f0().g, 0.02, 1e-15);  // ks f0
+  EXPECT_EQ(g->f90().g, 0.5);           // ks
+  EXPECT_EQ(g->material.ms_albedo.g, 0.0);  // no Kulla-Conty lobe
+  EXPECT_EQ(g->material.compensation.g, 0.0);
+  EXPECT_EQ(g->material.diffuse.g, 0.25);  // kd
   const auto m = (*make_brdf("filament", {{"perceptual_roughness", "0.3"}, {"metallic", "1"}, {"base_color", "0.9,0.6,0.3"}}))
                      ->split_sum_inputs();
   ASSERT_TRUE(m.has_value());
-  EXPECT_NEAR(m->roughness, 0.3, 1e-15);
-  EXPECT_NEAR(m->f0.b, 0.3, 1e-15);  // a metal's f0 is its base colour
-  EXPECT_EQ(m->f90.r, 1.0);
-  EXPECT_NE(m->filament, nullptr);  // energy compensation is on by default
+  EXPECT_NEAR(m->roughness(), 0.3, 1e-15);
+  EXPECT_NEAR(m->f0().b, 0.3, 1e-15);  // a metal's f0 is its base colour
+  EXPECT_EQ(m->f90().r, 1.0);
+  EXPECT_NEAR(m->material.compensation.b, 0.3, 1e-15);  // energy compensation is on by default: c = f0
+  EXPECT_EQ(m->material.diffuse.r, 0.0);  // a metal has no diffuse
 }
 
 // The registry's split-sum sweep (ibl-error's rows) is declared by exactly the models whose BRDFs answer
@@ -225,7 +228,7 @@ TEST(GameLobe, TheSplitSumSweepIsDeclaredByTheModelsThatTakeTheSplitSum) {
     const SplitSumSweep& s = *info.split_sum_sweep;
     auto rough = make_brdf(info.name, {{s.roughness_param, "0.7"}});
     ASSERT_TRUE(rough.has_value()) << info.name << " " << s.roughness_param;
-    EXPECT_NEAR((*rough)->split_sum_inputs()->roughness, 0.7, 1e-15) << info.name;
+    EXPECT_NEAR((*rough)->split_sum_inputs()->roughness(), 0.7, 1e-15) << info.name;
     auto alone = make_brdf(info.name, {{s.specular_only_param, s.specular_only_value}});
     ASSERT_TRUE(alone.has_value()) << info.name << " " << s.specular_only_param;
     EXPECT_EQ((*alone)->diffuse_albedo().max_component(), 0.0) << info.name << ": the specular lobe alone";

@@ -65,14 +65,8 @@ std::optional<KernelBinding> Ggx::kernel_binding() const {
 // of a dielectric or conductor, for which the DFG table's Schlick is then an approximation) times ks; f90 = ks;
 // the Kulla-Conty lobe when it is on. The DFG table is the height-correlated G2: with g = smith-separable the
 // split sum uses it anyway (an approximation).
-std::optional<SplitSumInputs> Ggx::split_sum_inputs() const {
-  SplitSumInputs in;
-  in.roughness = perceptual_roughness_from_alpha(std::sqrt(m_p.alpha_x * m_p.alpha_y));
-  in.f0 = m_p.ks * Rgb(kernel::F_by_kind_rgb(static_cast<int>(m_p.f), 1.0, m_p.ior, m_p.k, m_p.f0));
-  in.f90 = m_p.ks;
-  if (m_p.ms == MultipleScattering::kulla_conty) in.ggx_ms = &m_k;
-  return in;
-}
+// The model's kernel writes it (kernels/ggx.sl ggx_split_sum), so the exported shaders read the same.
+std::optional<SplitSumInputs> Ggx::split_sum_inputs() const { return SplitSumInputs{kernel::ggx_split_sum(m_k)}; }
 
 double Ggx::specular_pdf(const Vec3& wi, const Vec3& wo) const {
   switch (m_p.sampler) {

@@ -40,7 +40,7 @@ inline double exponent_from_beckmann_m(double m) { return 2.0 / (m * m) - 2.0; }
 // Perceptual roughness r and GGX alpha: alpha = r^2 (Burley 2012, "Physically-Based Shading at Disney",
 // section 5.4; Karis 2013): the library's one conversion (kernels/microfacet.sl alpha_from_roughness).
 inline double alpha_from_perceptual_roughness(double r) { return kernel::alpha_from_roughness(r); }
-inline double perceptual_roughness_from_alpha(double alpha) { return std::sqrt(alpha); }
+inline double perceptual_roughness_from_alpha(double alpha) { return kernel::roughness_from_alpha(alpha); }
 
 // The Phong exponent whose (R.L)^n lobe matches a GGX lobe of roughness alpha: GGX's alpha is a roughness
 // like Beckmann's m (both the RMS slope's scale; Walter et al. 2007 section 5.2), m -> Blinn-Phong n =

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "shadelab/envmap/dfg.h"
 #include "shadelab/kernels/kernels.h"
@@ -87,7 +89,16 @@ SplitSumLobeTable::SplitSumLobeTable(int size)
       texels_(static_cast<std::size_t>(size) * static_cast<std::size_t>(size)),
       row_once_(std::make_unique<std::once_flag[]>(static_cast<std::size_t>(size))) {}
 
+SplitSumLobeTable::SplitSumLobeTable(int size, std::vector<SplitSumLobes> texels)
+    : size_(size), stored_(true), texels_(std::move(texels)) {
+  if (size < 1 || texels_.size() != static_cast<std::size_t>(size) * static_cast<std::size_t>(size)) {
+    throw std::invalid_argument("SplitSumLobeTable: " + std::to_string(texels_.size()) + " texels for size " +
+                                std::to_string(size));
+  }
+}
+
 void SplitSumLobeTable::fill_row(int j) const {
+  if (stored_) return;
   std::call_once(row_once_[static_cast<std::size_t>(j)], [&] {
     for (int i = 0; i < size_; ++i)
       texels_[static_cast<std::size_t>(j * size_ + i)] = split_sum_lobes_at((i + 0.5) / size_, (j + 0.5) / size_);
@@ -100,6 +111,7 @@ const SplitSumLobes& SplitSumLobeTable::at(int i, int j) const {
 }
 
 const std::vector<SplitSumLobes>& SplitSumLobeTable::all() const {
+  if (stored_) return texels_;
   spread_table();  // built once, before the rows read it
   tbb::parallel_for(tbb::blocked_range<int>(0, size_), [&](const tbb::blocked_range<int>& r) {
     for (int j = r.begin(); j != r.end(); ++j) fill_row(j);

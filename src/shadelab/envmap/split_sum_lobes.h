@@ -62,6 +62,9 @@ constexpr int split_sum_lobe_size = 32;
 class SplitSumLobeTable {
  public:
   explicit SplitSumLobeTable(int size = split_sum_lobe_size);
+  // A table of stored texels (row-major, size^2 of them; split_sum_lobes.json as `bake ibl` writes it), read
+  // as they are: nothing is computed.
+  SplitSumLobeTable(int size, std::vector<SplitSumLobes> texels);
   int size() const { return size_; }
   // Texel (i, j): N.V column i, roughness row j, each in [0, size).
   const SplitSumLobes& at(int i, int j) const;
@@ -71,6 +74,7 @@ class SplitSumLobeTable {
  private:
   void fill_row(int j) const;
   int size_;
+  bool stored_ = false;
   mutable std::vector<SplitSumLobes> texels_;
   mutable std::unique_ptr<std::once_flag[]> row_once_;
 };

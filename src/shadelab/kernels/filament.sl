@@ -48,7 +48,20 @@ inline FilamentState filament_prepare(FilamentParams p) {
 // Filament's energy compensation factor 1 + f0 (1/E - 1) for the single-scattering albedo E = E(N.V) with
 // F = 1 ("Energy loss in specular reflectance"); the game renderer's split-sum applies it with E = A + B.
 inline rgb filament_energy_compensation(rgb f0, real e) {
-  return rgb(1.0) + f0 * (1.0 / e - 1.0);
+  return split_sum_energy_compensation(f0, e);
+}
+
+// The split-sum description (split_sum.sl): rho_d = (1 - metallic) base_colour, r = sqrt(alpha), f0, f90 = 1
+// ("Fresnel (specular F)"), and with energy compensation on, c = f0 ("Energy loss in specular reflectance").
+inline SplitSumMaterial filament_split_sum(FilamentState s) {
+  SplitSumMaterial m;
+  m.diffuse = s.diffuse_colour;
+  m.roughness = roughness_from_alpha(s.alpha);
+  m.f0 = s.f0;
+  m.f90 = rgb(1.0);
+  m.compensation = s.energy_compensation == 1 ? s.f0 : rgb(0.0);
+  m.ms_albedo = rgb(0.0);
+  return m;
 }
 
 inline rgb filament_eval(FilamentState s, vec3 wi, vec3 wo) {

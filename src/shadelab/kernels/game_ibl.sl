@@ -9,7 +9,11 @@
 // - the lobe-matched lookup's table (envmap/split_sum_lobes.h), read as the DFG table but going to the mirror
 //   below its first row;
 // - the split sum at a shading point (game_split_sum_ambient): the lookup (mirror, dominant or lobes), the chain
-//   reads and prefiltered (f0 A + f90 B) of game_ambient.sl (Karis 2013).
+//   reads and prefiltered (f0 A + f90 B) of game_ambient.sl (Karis 2013);
+// - with a model's split-sum description (split_sum.sl), the specular ambient and its energy terms
+//   (game_split_sum_shade: what the game renderer calls per pixel) and the whole environment lighting of the
+//   game shading equation, SH9 diffuse plus split-sum specular (game_ibl_ambient: what `shadelab shader --ibl`
+//   exports).
 // The texels come from the language-specific fetches cube_texel / cube_size (the chain's level i is cube i),
 // dfg_texel(i, j, channel) and split_sum_lobe_texel(i, j, channel) (C++: kernels.h; shaders: their textures).
 
@@ -53,12 +57,12 @@ inline DfgScaleBias dfg_read(real mu, real roughness, int n) {
   int y1 = min(y0 + 1, n - 1);
   real tx = px - real(x0);
   real ty = py - real(y0);
-  DfgScaleBias out;
-  out.a = (dfg_texel(x0, y0, 0) * (1.0 - tx) + dfg_texel(x1, y0, 0) * tx) * (1.0 - ty) +
+  DfgScaleBias ab;
+  ab.a = (dfg_texel(x0, y0, 0) * (1.0 - tx) + dfg_texel(x1, y0, 0) * tx) * (1.0 - ty) +
           (dfg_texel(x0, y1, 0) * (1.0 - tx) + dfg_texel(x1, y1, 0) * tx) * ty;
-  out.b = (dfg_texel(x0, y0, 1) * (1.0 - tx) + dfg_texel(x1, y0, 1) * tx) * (1.0 - ty) +
+  ab.b = (dfg_texel(x0, y0, 1) * (1.0 - tx) + dfg_texel(x1, y0, 1) * tx) * (1.0 - ty) +
           (dfg_texel(x0, y1, 1) * (1.0 - tx) + dfg_texel(x1, y1, 1) * tx) * ty;
-  return out;
+  return ab;
 }
 
 struct SplitSumLobeReads {
@@ -88,21 +92,21 @@ inline SplitSumLobeReads split_sum_lobes_read(real mu, real roughness, int n) {
   int y1 = min(y0 + 1, n - 1);
   real tx = px - real(x0);
   real ty = py - real(y0);
-  SplitSumLobeReads out;
-  out.angle_a = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 0);
-  out.roughness_a = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 1);
-  out.angle_b = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 2);
-  out.roughness_b = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 3);
+  SplitSumLobeReads reads;
+  reads.angle_a = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 0);
+  reads.roughness_a = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 1);
+  reads.angle_b = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 2);
+  reads.roughness_b = split_sum_lobe_bilinear(x0, x1, y0, y1, tx, ty, 3);
   real r0 = 0.5 / fn;
   if (roughness < r0) {
     real w = max(roughness, 0.0) / r0;
     real mirror_angle = acos(clamp(mu, 0.0, 1.0));
-    out.angle_a = mirror_angle + (out.angle_a - mirror_angle) * w;
-    out.roughness_a = out.roughness_a * w;
-    out.angle_b = mirror_angle + (out.angle_b - mirror_angle) * w;
-    out.roughness_b = out.roughness_b * w;
+    reads.angle_a = mirror_angle + (reads.angle_a - mirror_angle) * w;
+    reads.roughness_a = reads.roughness_a * w;
+    reads.angle_b = mirror_angle + (reads.angle_b - mirror_angle) * w;
+    reads.roughness_b = reads.roughness_b * w;
   }
-  return out;
+  return reads;
 }
 
 // The split sum's lookups (render/game_renderer.h GameSplitSumDirection; `render --split-sum-lookup`).
@@ -127,4 +131,25 @@ inline rgb game_split_sum_ambient(vec3 n, vec3 wo, real mu, real roughness, rgb 
   }
   if (lookup == SPLIT_SUM_LOOKUP_DOMINANT) r = game_split_sum_direction(n, r, alpha_from_roughness(roughness));
   return game_split_sum_specular(ggx_chain_read(r, roughness, levels, mapping), f0, f90, ab.a, ab.b);
+}
+
+// The split-sum specular ambient of a model at a shading point, energy terms included: n the unit normal and wo
+// the unit direction to the viewer (world space), m the model's description (split_sum.sl), e_over_pi the
+// irradiance E/pi at n (lights the multiple-scattering lobe), the lookup, the chain (levels, mip mapping), the
+// DFG table's size and the lobe table's size (lookup lobes). mu = N.V and r are clamped to [0, 1].
+inline rgb game_split_sum_shade(vec3 n, vec3 wo, SplitSumMaterial m, rgb e_over_pi, int lookup, int levels, int mapping,
+                                int dfg_size, int lobe_size) {
+  real mu = clamp(dot(n, wo), 0.0, 1.0);
+  real roughness = clamp(m.roughness, 0.0, 1.0);
+  DfgScaleBias ab = dfg_read(mu, roughness, dfg_size);
+  rgb spec = game_split_sum_ambient(n, wo, mu, roughness, m.f0, m.f90, ab, lookup, levels, mapping, lobe_size);
+  return split_sum_energy_terms(spec, m, ab.a + ab.b, e_over_pi);
+}
+
+// The environment lighting of the game shading equation for a split-sum model (game units): the diffuse ambient
+// rho_d E/pi (e_over_pi from sh9_irradiance_game, or an irradiance map) plus the split-sum specular ambient.
+inline rgb game_ibl_ambient(vec3 n, vec3 wo, SplitSumMaterial m, rgb e_over_pi, int lookup, int levels, int mapping,
+                            int dfg_size, int lobe_size) {
+  return game_diffuse_ambient(m.diffuse, e_over_pi) +
+         game_split_sum_shade(n, wo, m, e_over_pi, lookup, levels, mapping, dfg_size, lobe_size);
 }

@@ -79,9 +79,24 @@ inline rgb ggx_eval(GgxState s, vec3 wi, vec3 wo) {
 // integral f_ms mu_i d(wi) = ms_scale (1 - e_o) 2 pi integral_0^1 (1 - E(mu)) mu d(mu) = ms_scale (1 - e_o) pi
 // (1 - E_avg) = ks F_ms (1 - e_o) (Kulla & Conty 2017, slide 18). 0 without multiple scattering. The game
 // renderer's split-sum passes e_o from its DFG table and lights this diffuse-like lobe with the irradiance.
-inline rgb ggx_ms_albedo(GgxState s, real e_o) {
+inline rgb ggx_ms_albedo_scale(GgxState s) {
   if (s.p.ms != GGX_MS_KULLA_CONTY) return rgb(0.0);
-  real e_avg = ggx_energy_average_at(s.ms_rows);
-  return s.ms_scale * (SL_PI * (1.0 - e_avg) * max(0.0, 1.0 - e_o));
+  return s.ms_scale * (SL_PI * (1.0 - ggx_energy_average_at(s.ms_rows)));
+}
+inline rgb ggx_ms_albedo(GgxState s, real e_o) {
+  return split_sum_ms_albedo(ggx_ms_albedo_scale(s), e_o);
+}
+
+// The split-sum description (split_sum.sl): rho_d = kd, r = sqrt(alpha), alpha = sqrt(alpha_x alpha_y), f0 = ks F(1) (the
+// Fresnel kind's reflectance at normal incidence), f90 = ks, and with ms = kulla-conty the lobe's albedo scale.
+inline SplitSumMaterial ggx_split_sum(GgxState s) {
+  SplitSumMaterial m;
+  m.diffuse = s.p.kd;
+  m.roughness = roughness_from_alpha(sqrt(s.p.alpha_x * s.p.alpha_y));
+  m.f0 = s.p.ks * F_by_kind_rgb(s.p.f, 1.0, s.p.ior, s.p.k, s.p.f0);
+  m.f90 = s.p.ks;
+  m.compensation = rgb(0.0);
+  m.ms_albedo = ggx_ms_albedo_scale(s);
+  return m;
 }
 

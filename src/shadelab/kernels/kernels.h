@@ -87,6 +87,7 @@ inline real dfg_texel(int x, int y, int channel) {
 #include "shadelab/kernels/fresnel.sl"
 #include "shadelab/kernels/microfacet.sl"
 #include "shadelab/kernels/ggx_energy.sl"
+#include "shadelab/kernels/split_sum.sl"
 #include "shadelab/kernels/lambert.sl"
 #include "shadelab/kernels/phong.sl"
 #include "shadelab/kernels/blinn_phong.sl"

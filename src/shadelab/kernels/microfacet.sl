@@ -65,6 +65,10 @@ inline real D_ggx_aniso(vec3 h, real ax, real ay) {
 inline real alpha_from_roughness(real r) {
   return r * r;
 }
+// Its inverse, r = sqrt(alpha): the perceptual roughness the split sum's chain and tables are read at.
+inline real roughness_from_alpha(real alpha) {
+  return sqrt(alpha);
+}
 
 // GGX, isotropic: alpha^2 / (pi ((alpha^2 - 1) cos^2(theta_h) + 1)^2) (Walter et al. 2007 eq. 33, written
 // as in Filament's documentation, "Specular D": D_GGX).

@@ -86,7 +86,13 @@ class GameShader {
       if (m_options.diffuse == GameAmbient::irradiance_map && b.irradiance.size == 0) {
         return make_error("game renderer: the baked environment has no irradiance cube (diffuse irradiance_map)");
       }
-      if (m_options.specular_ambient && b.specular.levels.empty()) {
+      bool any_phong_chain = false;  // a material that reads the Phong chain (game_specular_ambients' rule)
+      for (std::size_t i = 0; i < m_scene.materials.size(); ++i) {
+        BrdfPtr holder;
+        const Brdf* f = m_materials.brdf(static_cast<int>(i), {0.5, 0.5}, holder);
+        if (!m_split_sum[i] && f != nullptr && f->game_phong_exponent() > 0.0) any_phong_chain = true;
+      }
+      if (m_options.specular_ambient && any_phong_chain && b.specular.levels.empty()) {
         return make_error("game renderer: the baked environment has no prefiltered chain (specular_ambient)");
       }
       if (m_options.specular_ambient && any_split_sum && b.specular_ggx.levels.empty()) {
@@ -106,9 +112,11 @@ class GameShader {
       if (m_options.split_sum_taps < 1 || m_options.split_sum_taps > split_sum_taps_max) {
         return make_error("split_sum_taps must be in [1, 1024]");
       }
-      m_dfg = &game_dfg_table(m_options.dfg_size);
+      m_dfg = m_baked != nullptr && m_baked->dfg ? m_baked->dfg.get() : &game_dfg_table(m_options.dfg_size);
       // The lobe table's rows are computed as the pixels first read them (split_sum_lobes.h).
-      if (m_options.split_sum_direction == GameSplitSumDirection::lobes) m_lobes = &split_sum_lobe_table();
+      if (m_options.split_sum_direction == GameSplitSumDirection::lobes) {
+        m_lobes = m_baked != nullptr && m_baked->lobes ? m_baked->lobes.get() : &split_sum_lobe_table();
+      }
       // The chain and the DFG table as the kernels' fetches read them (kernels/game_ibl.sl), bound per pixel.
       if (m_baked != nullptr && !m_baked->specular_ggx.levels.empty()) {
         m_chain_texels.emplace(m_baked->specular_ggx);
@@ -201,26 +209,23 @@ class GameShader {
       // d the mirror direction R or the dominant direction (options.split_sum_direction); the chain and the DFG
       // table read by the kernels of game_ibl.sl (the text the exported shaders run).
       const kernel::IblBinding bind(m_ibl_texels);
-      const double mu = std::isfinite(wo.z) ? std::clamp(wo.z, 0.0, 1.0) : 0.0;
-      const double roughness = ggx_chain_roughness(split->roughness);
-      const kernel::DfgScaleBias ab = kernel::dfg_read(mu, roughness, m_dfg->size);
-      Rgb spec;
+      kernel::SplitSumMaterial m = split->material;
+      m.roughness = ggx_chain_roughness(m.roughness);  // NaN reads as 0
       if (m_options.split_sum_direction == GameSplitSumDirection::filtered) {
         // Each part averaged over its own lobe by taps of the same chain (envmap/split_sum_taps.h).
+        const double mu = std::isfinite(wo.z) ? std::clamp(wo.z, 0.0, 1.0) : 0.0;
+        const kernel::DfgScaleBias ab = kernel::dfg_read(mu, m.roughness, m_dfg->size);
         const SplitSumReads reads =
-            split_sum_filtered_reads(m_baked->specular_ggx, sf.frame, wo, split->roughness, m_options.split_sum_taps);
-        spec = Rgb(kernel::game_split_sum_specular_lobes(reads.a, reads.b, split->f0, split->f90, ab.a, ab.b));
+            split_sum_filtered_reads(m_baked->specular_ggx, sf.frame, wo, m.roughness, m_options.split_sum_taps);
+        const Rgb spec(kernel::game_split_sum_specular_lobes(reads.a, reads.b, m.f0, m.f90, ab.a, ab.b));
+        l += Rgb(kernel::split_sum_energy_terms(spec, m, ab.a + ab.b, e_over_pi));
       } else {
-        // The lookup (mirror, dominant or lobes), the chain reads and prefiltered (f0 A + f90 B): the kernel
-        // text game_split_sum_ambient, which the exported shaders run.
-        spec = Rgb(kernel::game_split_sum_ambient(sf.frame.n, wo_world, mu, roughness, split->f0, split->f90, ab,
-                                                  static_cast<int>(m_options.split_sum_direction),
-                                                  m_ibl_texels.cube_count, m_chain_texels->mapping, m_ibl_texels.lobe_size));
+        // The DFG read, the lookup (mirror, dominant or lobes), the chain reads, prefiltered (f0 A + f90 B) and
+        // the model's energy terms: the kernel text game_split_sum_shade, which the exported shaders run.
+        l += Rgb(kernel::game_split_sum_shade(sf.frame.n, wo_world, m, e_over_pi, static_cast<int>(m_options.split_sum_direction),
+                                              m_ibl_texels.cube_count, m_chain_texels->mapping, m_ibl_texels.dfg_size,
+                                              m_ibl_texels.lobe_size));
       }
-      const double e = ab.a + ab.b;  // E(N.V) with F = 1, of the same table
-      if (split->filament != nullptr && e > 0.0) spec = spec * Rgb(kernel::filament_energy_compensation(split->f0, e));
-      if (split->ggx_ms != nullptr) spec += Rgb(kernel::ggx_ms_albedo(*split->ggx_ms, e)) * e_over_pi;
-      l += spec;
     } else if (m_env.has_light()) {
       const Vec3 n = sf.frame.n;
       if (m_options.specular_ambient && info.exponent > 0.0 && m_baked != nullptr && !m_baked->specular.levels.empty()) {

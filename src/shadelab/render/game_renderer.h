@@ -37,10 +37,13 @@
 // that the agreement test can fail.
 #pragma once
 
+#include <memory>
+
 #include "shadelab/envmap/dfg.h"
 #include "shadelab/envmap/prefilter.h"
 #include "shadelab/envmap/prefilter_ggx.h"
 #include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/split_sum_lobes.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/path_tracer.h"
 
@@ -112,6 +115,10 @@ struct GameEnvironment {
   CubeMap irradiance;
   PrefilteredCube specular;
   GgxPrefilteredCube specular_ggx;
+  // The split sum's tables when they come from files (`shader verify --ibl` shades with exactly the files
+  // `bake ibl` wrote): null, the renderer's own, game_dfg_table(options.dfg_size) and split_sum_lobe_table().
+  std::shared_ptr<const DfgTable> dfg;
+  std::shared_ptr<const SplitSumLobeTable> lobes;
 };
 Result<GameEnvironment> bake_game_environment(const Scene& scene, const GameOptions& options = {});
 Result<GameEnvironment> bake_game_environment(const EnvironmentLight& env, const GameOptions& options = {});
