@@ -24,7 +24,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "shadelab/envmap/dfg.h"
 #include "shadelab/envmap/prefilter.h"
+#include "shadelab/envmap/split_sum_lobes.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/game_renderer.h"
@@ -73,6 +75,9 @@ Result<json> bake_environment(const std::string& name, const fs::path& file, int
   if (!baked) return baked.error();
   std::vector<const CubeMap*> blocks = {&baked->radiance};
   for (const CubeMap& level : baked->specular.levels) blocks.push_back(&level);
+  // The split sum's GGX chain (the ggx and filament spheres), after the Phong chain.
+  const std::size_t ggx_first = blocks.size();
+  for (const CubeMap& level : baked->specular_ggx.levels) blocks.push_back(&level);
   const int width = size;
   int height = 0;
   json block_list = json::array();
@@ -98,7 +103,31 @@ Result<json> bake_environment(const std::string& name, const fs::path& file, int
   json sh = json::array();
   for (const Rgb& c : baked->sh.c) sh.push_back({c.r, c.g, c.b});
   const PrefilterOptions po;
-  return json{{"name", name}, {"file", file.string()}, {"size", size}, {"specular_size", size},
+  // The split sum's tables as the renderer reads them (game_dfg_table(64), split_sum_lobe_table()): RGBA float32
+  // texels, row-major (row = roughness): the DFG table's A, B (A + B, 0) and the lobe table's angle_a,
+  // roughness_a, angle_b, roughness_b.
+  const GameOptions defaults;
+  const DfgTable& dfg = game_dfg_table(defaults.dfg_size);
+  std::vector<float> dfg_texels;
+  for (int j = 0; j < dfg.size; ++j) {
+    for (int i = 0; i < dfg.size; ++i) {
+      for (int c = 0; c < 3; ++c) dfg_texels.push_back(static_cast<float>(dfg.at(i, j, c)));
+      dfg_texels.push_back(0.0f);
+    }
+  }
+  const SplitSumLobeTable& lobes = split_sum_lobe_table();
+  std::vector<float> lobe_texels;
+  for (const SplitSumLobes& l : lobes.all()) {
+    for (double v : {l.a.angle, l.a.roughness, l.b.angle, l.b.roughness}) lobe_texels.push_back(static_cast<float>(v));
+  }
+  const auto b64 = [](const std::vector<float>& v) {
+    return shaders::base64(reinterpret_cast<const std::uint8_t*>(v.data()), v.size() * sizeof(float));
+  };
+  const json split_sum = {{"ggx_first_block", ggx_first}, {"ggx_levels", baked->specular_ggx.levels.size()},
+                          {"ggx_mapping", baked->specular_ggx.mapping.name()},
+                          {"dfg_size", dfg.size}, {"dfg", b64(dfg_texels)},
+                          {"lobe_size", lobes.size()}, {"lobes", b64(lobe_texels)}};
+  return json{{"name", name}, {"file", file.string()}, {"size", size}, {"specular_size", size}, {"split_sum", split_sum},
               {"gloss_scale", po.gloss_scale}, {"gloss_bias", po.gloss_bias}, {"exponents", baked->specular.exponents},
               {"sh", sh}, {"width", width}, {"height", height}, {"blocks", block_list},
               {"texels", shaders::base64(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float))}};

@@ -16,9 +16,12 @@
 //   file of the same name is replaced; other files in dir are left alone. A missing folder is not an error.
 //   env-NAME.js sets window.shadelabEnvironmentData[NAME] to {name, file, size, specular_size, gloss_scale,
 //   gloss_bias, exponents, sh (9 x [r, g, b], radiance units), width, height, blocks ([{size, row}]: block 0
-//   the radiance cube, block 1 + i the chain's level i; face f of a block is the rows row + f size .. row +
-//   (f + 1) size - 1, its texels the first size columns), texels (base64 of width x height RGB float32,
-//   little-endian, row-major, unused texels 0)}; environments.js sets window.shadelabEnvironments.
+//   the radiance cube, block 1 + i the Phong chain's level i, block ggx_first_block + i the GGX chain's level
+//   i; face f of a block is the rows row + f size .. row + (f + 1) size - 1, its texels the first size
+//   columns), texels (base64 of width x height RGB float32, little-endian, row-major, unused texels 0),
+//   split_sum {ggx_first_block, ggx_levels, ggx_mapping, dfg_size, dfg, lobe_size, lobes} (the split sum's
+//   tables as the renderer reads them: base64 RGBA float32, row-major)}; environments.js sets
+//   window.shadelabEnvironments.
 // - serve_site(dir, port, on_ready): listens on 127.0.0.1:port only (0 picks a free port), calls
 //   on_ready(port) once listening, then answers GET and HEAD requests for the regular files directly in dir
 //   ("/" is index.html) until the process ends. Returns an Error when the folder cannot be opened or the port

@@ -56,8 +56,12 @@ TEST(CliExplore, BakesTheHdris) {
     EXPECT_NE(js.find(std::string("[\"") + name + "\"] = {"), std::string::npos) << name;
     EXPECT_NE(js.find("\"texels\":\""), std::string::npos) << name;
     EXPECT_NE(js.find("\"file\":\"" + (world / (std::string(name) + ".exr")).string() + "\""), std::string::npos) << name;
-    // 32^2 faces: the radiance cube and 6 prefiltered levels (32 .. 1), 6 x (32 + 63) rows of 32 RGB float32.
-    EXPECT_NE(js.find("\"height\":570"), std::string::npos) << name;
+    // 32^2 faces: the radiance cube, 6 Phong-prefiltered levels (32 .. 1) and the 6 levels of the GGX chain,
+    // 6 x (32 + 63 + 63) rows of 32 RGB float32; the split sum's tables beside them.
+    EXPECT_NE(js.find("\"height\":948"), std::string::npos) << name;
+    EXPECT_NE(js.find("\"ggx_first_block\":7,\"ggx_levels\":6,\"ggx_mapping\":\"linear\""), std::string::npos) << name;
+    EXPECT_NE(js.find("\"dfg_size\":64"), std::string::npos) << name;
+    EXPECT_NE(js.find("\"lobe_size\":32"), std::string::npos) << name;
   }
   const std::string index = read_all(dir / "environments.js");
   EXPECT_NE(index.find("\"default\":\"forest\""), std::string::npos) << index;

@@ -255,10 +255,10 @@ async function renderReference(s, name) {
   const scene = path.join(work, `${name}.json`);
   fs.writeFileSync(scene, JSON.stringify(sceneFor(s)));
   const exr = path.join(work, `${name}.exr`), png = path.join(work, `${name}.png`);
-  // The page still shades ggx and filament on the Phong chain (its split sum is the next step of the
-  // game-shading issue), so it is held to the renderer's Phong chain, no longer the renderer's default.
+  // The renderer's defaults: ggx and filament under an HDRI with the split sum (lookup lobes), which the page
+  // shades with the exported text (`shader MODEL --ibl`).
   const args = ['render', scene, '--mode', 'game', '--spp', String(s.sphere.spp), '--out', exr, '--png', png,
-                '--exposure', String(s.sphere.exposure), '--ggx-specular', 'phong'];
+                '--exposure', String(s.sphere.exposure)];
   if (s.sphere.tone === 'filmic') args.push('--filmic');
   if (s.sphere.lighting !== 'point') args.push('--env-size', String(s.sphere.env_size), '--specular-size', String(s.sphere.specular_size));
   cli(args);
@@ -308,14 +308,19 @@ test('the WebGL 2 sphere matches the C++ game renderer within 1/255 mean absolut
 
 // The HDRI sphere: SH9 diffuse and prefiltered specular of a blender-data map baked by `shadelab explore` with
 // the renderer's own bake, shaded by the page's GLSL (the kernels of game_ambient.sl and sh9.sl, the cube lookup,
-// the level choice), against `render --mode game` of the same scene at the same bake sizes. Compared over the
-// sphere's pixels: behind it the page shows the baked 32^2 radiance cube, the renderer the full map.
+// the level choice; for ggx and filament the split sum of `shader MODEL --ibl`, kernels/game_ibl.sl, read
+// seamlessly), against `render --mode game` of the same scene at the same bake sizes (its defaults: the split
+// sum, lookup lobes). Compared over the sphere's pixels: behind it the page shows the baked 32^2 radiance cube,
+// the renderer the full map.
 const HDRI_VIEWS = [
   '?model=blinn-phong-modified&n=300&kd=0.1,0.35,0.12&ks=0.2&lighting=hdri&env=forest',
   '?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&lighting=both&env=studio&light=2&exposure=-0.5',
   '?model=phong&kd=0.2&ks=0.8&n=1000&lighting=hdri&env=city&exposure=1',
   '?model=wrapped-diffuse&kd=0.7,0.5,0.3&w=0.5&lighting=hdri&env=sunset&tone=filmic&exposure=1',
   '?model=ggx&lighting=hdri&env=courtyard',
+  '?model=ggx&roughness=0.25&f0=0.9,0.6,0.3&kd=0&lighting=hdri&env=studio&exposure=-0.5',
+  '?model=filament&base_color=0.8,0.2,0.1&perceptual_roughness=0.35&lighting=both&env=courtyard&light=2',
+  '?model=filament&metallic=1&base_color=0.95,0.64,0.54&perceptual_roughness=0.2&lighting=hdri&env=studio&tone=filmic',
 ];
 
 test('the HDRI-lit sphere matches the C++ game renderer within 1/255 mean absolute difference', async (t) => {

@@ -11,9 +11,11 @@
 //                                                             the in-plane lobe of `plot lobe` (plot_data.h)
 //   {"op": "lobe3d", model, params, "wi": [x,y,z], "n_theta", "n_phi"}  f_r luminance over the hemisphere
 //   {"op": "zoo", "n"}                                        the zoo table rows, as `zoo --json` has them
-//   {"op": "shader", model, params, "lang"}                   the text of `shader MODEL --param ... --lang`,
-//                                                             and the GGX tables' block name and bytes (or "", [])
-//   {"op": "game_lobe", model, params}                        brdf/game_lobe.h's numbers for the sphere
+//   {"op": "shader", model, params, "lang", "ibl"}            the text of `shader MODEL --param ... --lang [--ibl]`,
+//                                                             the GGX tables' block name and bytes (or "", []),
+//                                                             and with ibl the environment entry's name
+//   {"op": "game_lobe", model, params}                        brdf/game_lobe.h's numbers for the sphere, and
+//                                                             split_sum: whether the model shades with the split sum
 //   {"op": "kernels", "names": [...], "lang"}                 the translated kernel files defining the names
 // Every answer is {"error": "one line"} on bad input. Directions are normalized as the CLI does.
 #include <cmath>
@@ -206,13 +208,16 @@ json shader(const json& req) {
   e.command = "shadelab shader " + m.name;
   for (const auto& [name, value] : params) e.command += " --param " + name + "=" + value;
   e.command += " --lang " + lang;
+  e.ibl = req.value("ibl", false);
+  if (e.ibl) e.command += " --ibl";
   auto ex = shaders::export_model(m.name, params, e);
   if (!ex) throw BadRequest{ex.error().message};
   // A model that reads the GGX energy tables declares their uniform block: its name and std140 bytes (as
   // `shadelab shader --tables-out` writes them), which the page binds for the sphere.
   json tables = json::array();
   for (std::uint8_t b : ex->tables_data) tables.push_back(b);
-  return {{"text", ex->text}, {"entry", ex->entry}, {"tables_block", ex->tables_block}, {"tables", tables}};
+  return {{"text", ex->text}, {"entry", ex->entry}, {"tables_block", ex->tables_block}, {"tables", tables},
+          {"ibl_entry", ex->ibl_entry}};
 }
 
 json game_lobe_json(const json& req) {
@@ -226,7 +231,7 @@ json game_lobe_json(const json& req) {
   json table = json::array();
   for (const auto& v : g.specular_albedo) table.push_back(rgb_json(v));
   return {{"exponent", g.exponent}, {"blinn_like", g.blinn_like}, {"wrap", g.wrap}, {"specular_albedo", table},
-          {"diffuse_albedo", rgb_json((*f)->diffuse_albedo())}};
+          {"diffuse_albedo", rgb_json((*f)->diffuse_albedo())}, {"split_sum", (*f)->split_sum_inputs().has_value()}};
 }
 
 json dispatch(const json& req) {

@@ -449,7 +449,7 @@
   // ---- the sphere: the exported GLSL ES in WebGL 2 ------------------------------------------------------
   let gl = null, program = null, programSource = '', sphereError = '';
   let displayKernels = null;
-  const MAX_BLOCKS = 12;
+  const MAX_BLOCKS = 24;
   let tablesBuffer = null;
   const envTextures = {};  // name -> WebGL texture
   const envLoads = {};     // name -> 'loading' | 'loaded' | error message
@@ -469,6 +469,19 @@
     };
     script.onerror = () => { envLoads[name] = `HDRI '${name}': env-${name}.js did not load`; done(); };
     document.head.appendChild(script);
+  }
+
+  // An n x n RGBA32F table (the split sum's DFG and lobe tables of env-NAME.js), read with texelFetch.
+  function tableTexture(key, n, b64) {
+    if (envTextures[key]) return envTextures[key];
+    const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+    const tex = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, tex);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, n, n, 0, gl.RGBA, gl.FLOAT, new Float32Array(bytes.buffer));
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    envTextures[key] = tex;
+    return tex;
   }
 
   function environmentTexture(env) {
@@ -493,12 +506,34 @@ in vec2 p;
 void main() { gl_Position = vec4(p, 0.0, 1.0); }
 `;
 
-  function fragmentSource(modelText, entry) {
+  // The texel fetches the exported split sum calls (export.h ibl_fetch_declarations; kernels.h), here over the
+  // page's environment texture (the GGX chain's levels are its blocks from u_ggx_first on) and the two tables.
+  const IBL_FETCHES = `#define SHADELAB_IBL_FETCHES
+uniform int u_ggx_first;
+uniform highp sampler2D u_dfg, u_lobes;
+int cube_size(int cube) { return u_block_size[u_ggx_first + cube]; }
+vec3 cube_texel(int cube, int face, int x, int y) { return env_texel(u_ggx_first + cube, face, x, y); }
+float dfg_texel(int x, int y, int channel) { return texelFetch(u_dfg, ivec2(x, y), 0)[channel]; }
+int shadelab_dfg_size() { return textureSize(u_dfg, 0).x; }
+float split_sum_lobe_texel(int x, int y, int channel) { return texelFetch(u_lobes, ivec2(x, y), 0)[channel]; }
+int shadelab_split_sum_lobe_size() { return textureSize(u_lobes, 0).x; }
+`;
+
+  function fragmentSource(modelText, entry, iblEntry) {
     // The exported model (its kernels, the punctual term in both unit conventions and the inverse-square law
-    // of kernels/game_shading.sl) and kernels/display.sl; the rest is the camera and sphere geometry.
+    // of kernels/game_shading.sl; for the split-sum models with an HDRI, `shader --ibl`'s environment lighting,
+    // kernels/game_ibl.sl) and kernels/display.sl; the rest is the camera and sphere geometry.
     return `#version 300 es
 precision highp float;
 precision highp int;
+// The baked HDRI (env-NAME.js): block 0 the radiance cube, block 1 + i the prefiltered level i, then the GGX
+// chain's levels, as rows of u_env.
+uniform highp sampler2D u_env;
+uniform int u_block_size[${MAX_BLOCKS}], u_block_row[${MAX_BLOCKS}];
+vec3 env_texel(int block, int face, int x, int y) {
+  return texelFetch(u_env, ivec2(x, u_block_row[block] + face * u_block_size[block] + y), 0).rgb;
+}
+${iblEntry ? IBL_FETCHES : ''}
 ${modelText}
 ${displayKernels}
 uniform vec2 u_size;
@@ -510,10 +545,7 @@ uniform int u_units;
 uniform float u_exposure;
 uniform int u_tone;
 uniform int u_point_on, u_env_on;
-// The baked HDRI (env-NAME.js): block 0 the radiance cube, block 1 + i the prefiltered level i, as rows of u_env.
-uniform highp sampler2D u_env;
-uniform int u_block_size[${MAX_BLOCKS}], u_block_row[${MAX_BLOCKS}];
-uniform int u_levels;
+uniform int u_levels, u_ggx_levels, u_ggx_mapping;
 uniform float u_gloss_scale, u_gloss_bias;
 uniform Sh9Coefficients u_sh;
 // The material's game lobe (brdf/game_lobe.h, the module's game_lobe answer).
@@ -521,10 +553,6 @@ uniform GameSpecularAlbedo u_rho_s;
 uniform vec3 u_kd;
 uniform float u_exponent, u_wrap;
 out vec4 o_colour;
-
-vec3 env_texel(int block, int face, int x, int y) {
-  return texelFetch(u_env, ivec2(x, u_block_row[block] + face * u_block_size[block] + y), 0).rgb;
-}
 
 // A cube map lookup as CubeMap::sample (envmap/cubemap.h: the face of OpenGL table 8.19, ties to X then Y,
 // bilinear between texel centres, clamped at the face's edges); the browser test proves it equal to the C++.
@@ -591,6 +619,9 @@ vec3 radiance(vec3 d) {
     l += u_units == 0 ? ${entry}_punctual_game(wi, wo, e) : ${entry}_punctual_radiometric(wi, wo, e);
   }
   if (u_env_on == 1) {
+${iblEntry ? `    // SH9 diffuse and the split sum, the exported text (render --mode game's default for this model).
+    l += ${iblEntry}(n, -d, u_sh, u_ggx_levels, u_ggx_mapping);
+    return l;` : ''}
     // Diffuse ambient from SH9 (wrapped band factors for wrapped diffuse), specular ambient rho_s x prefiltered.
     vec3 e_over_pi = u_wrap > 0.0 ? sh9_irradiance_game_wrapped(u_sh, n, u_wrap) : sh9_irradiance_game(u_sh, n);
     l += game_diffuse_ambient(u_kd, e_over_pi);
@@ -650,9 +681,15 @@ void main() {
                                                      'game_prefiltered_level', 'game_reflect', 'game_diffuse_ambient',
                                                      'game_specular_ambient'], lang: 'essl' }).text;
     }
-    const ex = call({ op: 'shader', model: state.model, params: state.params, lang: 'essl' });
+    const lighting = state.view.lighting;
+    const env = lighting === 'point' ? null : (window.shadelabEnvironmentData || {})[state.view.env] || null;
+    const lobe = call({ op: 'game_lobe', model: state.model, params: state.params });
+    if (lobe.error) throw new Error(lobe.error);
+    // The split-sum models under an HDRI: the exported environment lighting (`shader MODEL --ibl`).
+    const splitSum = !!(env && lobe.split_sum && env.split_sum);
+    const ex = call({ op: 'shader', model: state.model, params: state.params, lang: 'essl', ibl: splitSum });
     if (ex.error) { sphereError = ex.error; return; }
-    const source = fragmentSource(ex.text, ex.entry);
+    const source = fragmentSource(ex.text, ex.entry, splitSum ? ex.ibl_entry : '');
     if (source !== programSource) {
       const p = gl.createProgram();
       gl.attachShader(p, compile(gl.VERTEX_SHADER, VERTEX));
@@ -686,12 +723,8 @@ void main() {
     gl.uniform1i(u('u_units'), state.view.units === 'game' ? 0 : 1);
     gl.uniform1f(u('u_exposure'), Number(state.view.exposure));
     gl.uniform1i(u('u_tone'), state.view.tone === 'clamp' ? 0 : 1);
-    const lighting = state.view.lighting;
-    const env = lighting === 'point' ? null : (window.shadelabEnvironmentData || {})[state.view.env] || null;
     gl.uniform1i(u('u_point_on'), lighting !== 'hdri' || !env ? 1 : 0);
     gl.uniform1i(u('u_env_on'), env ? 1 : 0);
-    const lobe = call({ op: 'game_lobe', model: state.model, params: state.params });
-    if (lobe.error) throw new Error(lobe.error);
     gl.uniform3fv(u('u_rho_s.bin[0]'), lobe.specular_albedo.flat());
     gl.uniform3fv(u('u_kd'), lobe.diffuse_albedo);
     gl.uniform1f(u('u_exponent'), lobe.exponent);
@@ -705,10 +738,23 @@ void main() {
       env.blocks.forEach((b, i) => { sizes[i] = b.size; rows[i] = b.row; });
       gl.uniform1iv(u('u_block_size[0]'), sizes);
       gl.uniform1iv(u('u_block_row[0]'), rows);
-      gl.uniform1i(u('u_levels'), env.blocks.length - 1);
+      gl.uniform1i(u('u_levels'), (env.split_sum ? env.split_sum.ggx_first_block : env.blocks.length) - 1);  // the Phong chain's
       gl.uniform1f(u('u_gloss_scale'), env.gloss_scale);
       gl.uniform1f(u('u_gloss_bias'), env.gloss_bias);
       gl.uniform3fv(u('u_sh.c[0]'), env.sh.flat());
+      if (splitSum) {
+        const ss = env.split_sum;
+        gl.uniform1i(u('u_ggx_first'), ss.ggx_first_block);
+        gl.uniform1i(u('u_ggx_levels'), ss.ggx_levels);
+        gl.uniform1i(u('u_ggx_mapping'), ss.ggx_mapping === 'filament' ? 1 : 0);  // GGX_MIP_MAPPING_*
+        gl.activeTexture(gl.TEXTURE2);
+        gl.bindTexture(gl.TEXTURE_2D, tableTexture(env.name + ':dfg', ss.dfg_size, ss.dfg));
+        gl.uniform1i(u('u_dfg'), 2);
+        gl.activeTexture(gl.TEXTURE3);
+        gl.bindTexture(gl.TEXTURE_2D, tableTexture(env.name + ':lobes', ss.lobe_size, ss.lobes));
+        gl.uniform1i(u('u_lobes'), 3);
+        gl.activeTexture(gl.TEXTURE0);
+      }
     }
     if (ex.tables_block) {
       // The GGX energy tables' uniform block (the bytes `shadelab shader --tables-out` writes), binding point 1.
