@@ -24,7 +24,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "shadelab/envmap/prefilter.h"
+#include "shadelab/envmap/specular/prefilter.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/game_renderer.h"

@@ -37,10 +37,10 @@
 // that the agreement test can fail.
 #pragma once
 
-#include "shadelab/envmap/dfg.h"
-#include "shadelab/envmap/prefilter.h"
-#include "shadelab/envmap/prefilter_ggx.h"
-#include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/specular/dfg.h"
+#include "shadelab/envmap/specular/prefilter.h"
+#include "shadelab/envmap/specular/prefilter_ggx.h"
+#include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/path_tracer.h"
 

@@ -526,7 +526,7 @@ vec3 env_texel(int block, int face, int x, int y) {
   return texelFetch(u_env, ivec2(x, u_block_row[block] + face * u_block_size[block] + y), 0).rgb;
 }
 
-// A cube map lookup as CubeMap::sample (envmap/cubemap.h: the face of OpenGL table 8.19, ties to X then Y,
+// A cube map lookup as CubeMap::sample (envmap/base/cubemap.h: the face of OpenGL table 8.19, ties to X then Y,
 // bilinear between texel centres, clamped at the face's edges); the browser test proves it equal to the C++.
 vec3 cube_sample(int block, vec3 r) {
   vec3 a = abs(r);
