@@ -10,6 +10,7 @@
 #include "common.h"
 #include "shadelab/envmap/base/environment.h"
 #include "shadelab/envmap/base/latlong.h"
+#include "shadelab/envmap/diffuse/environment_bakes.h"
 #include "shadelab/envmap/diffuse/irradiance.h"
 #include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/image/image_io.h"

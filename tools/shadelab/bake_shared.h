@@ -10,6 +10,7 @@
 
 #include "shadelab/envmap/base/cubemap.h"
 #include "shadelab/envmap/base/ktx2.h"
+#include "shadelab/envmap/diffuse/irradiance.h"
 #include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/envmap/specular/dfg.h"
 #include "shadelab/envmap/specular/prefilter_ggx.h"

@@ -15,6 +15,21 @@ kernel::CubeTexels cube_texels(const CubeMap& cube) {
   return t;
 }
 
+Rgb sample_cube_seamless(const CubeMap& cube, const Vec3& dir) {
+  if (cube.size < 1) return {};
+  const kernel::CubeTexels c = cube_texels(cube);
+  const kernel::IblTexels texels{&c, 1, nullptr, 0};
+  const kernel::IblBinding bind(texels);
+  return kernel::cube_sample_seamless(0, dir);
+}
+
+Rgb texel_across_edges(const CubeMap& c, int face, int x, int y) {
+  const kernel::CubeTexels cube = cube_texels(c);
+  const kernel::IblTexels texels{&cube, 1, nullptr, 0};
+  const kernel::IblBinding bind(texels);
+  return kernel::cube_texel_across_edges(0, c.size, face, x, y);
+}
+
 namespace {
 // Solid angle of the face-plane rectangle [0, x] x [0, y] (signed), at distance 1.
 double area_element(double x, double y) { return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0)); }

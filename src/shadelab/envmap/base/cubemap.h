@@ -68,6 +68,13 @@ struct CubeMap {
 // kernel that reads cubes (kernels/cube.sl, game_ibl.sl).
 kernel::CubeTexels cube_texels(const CubeMap& cube);
 
+// A bilinear lookup at direction dir that crosses face edges (the reads of prefilter_ggx): the kernel text
+// kernels/cube.sl cube_sample_seamless on this cube. Black for an empty cube.
+Rgb sample_cube_seamless(const CubeMap& cube, const Vec3& dir);
+// Texel (x, y) of a face, where x or y may be one texel outside [0, N): the kernel text's
+// cube_texel_across_edges (kernels/cube.sl) on this cube.
+Rgb texel_across_edges(const CubeMap& c, int face, int x, int y);
+
 // Per-texel data of an N x N cube map precomputed once per resolution: unit directions and exact solid
 // angles, face-major then row-major, the layout of the face images. Shared by the SH projection and the
 // convolutions, so no hot loop recomputes a direction or a solid angle.

@@ -38,16 +38,13 @@
 // fixed order, so the result is the same for any thread count.
 #pragma once
 
-#include <functional>
-
 #include "shadelab/envmap/base/cubemap.h"
+#include "shadelab/envmap/base/progress.h"
 #include "shadelab/image/image.h"
 
 namespace shadelab {
 
 enum class RadianceUnits { game, radiometric };
-
-using ProgressFn = std::function<void(double fraction_done)>;
 
 struct ConvolveOptions {
   // Cube inputs with faces larger than this, and lat-long inputs wider than 4x this, are first halved
@@ -57,13 +54,6 @@ struct ConvolveOptions {
   int max_input_size = 512;
   ProgressFn progress;  // called on the calling thread between blocks of output texels
 };
-
-// Halves the face size; each output texel is the solid-angle-weighted mean of its 2 x 2 input texels.
-// Odd sizes are not halved (returned unchanged).
-CubeMap downsample_cube(const CubeMap& cube);
-// Halves a lat-long map (W x H -> W/2 x H/2) keeping the flux of every 2 x 2 block (row solid angles as
-// weights). Odd sizes are returned unchanged.
-Image downsample_latlong(const Image& latlong);
 
 // E(n) = pi S(n) / W(n) at one direction by per-texel sums (radiometric). For tests and spot checks.
 Rgb irradiance_brute_force(const CubeMap& radiance, const Vec3& n);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "shadelab/core/constants.h"
+#include "shadelab/envmap/base/downsample.h"
 #include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/light/hemisphere_light.h"
 #include "shadelab/envmap/base/cube_test_util.h"

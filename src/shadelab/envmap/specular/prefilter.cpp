@@ -8,6 +8,7 @@
 #include <string>
 
 #include "shadelab/core/constants.h"
+#include "shadelab/envmap/base/downsample.h"
 #include "shadelab/envmap/base/simd.h"
 #include "shadelab/envmap/specular/lobe_sum.h"
 

@@ -35,7 +35,7 @@
 #include "shadelab/brdf/gloss.h"
 #include "shadelab/core/error.h"
 #include "shadelab/envmap/base/cubemap.h"
-#include "shadelab/envmap/diffuse/irradiance.h"
+#include "shadelab/envmap/base/progress.h"
 
 namespace shadelab {
 

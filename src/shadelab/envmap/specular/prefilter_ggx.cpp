@@ -13,6 +13,7 @@
 
 #include "shadelab/core/constants.h"
 #include "shadelab/core/frame.h"
+#include "shadelab/envmap/base/downsample.h"
 #include "shadelab/envmap/base/simd.h"
 #include "shadelab/envmap/specular/lobe_near_far.h"
 #include "shadelab/envmap/specular/lobe_sum.h"
@@ -90,27 +91,6 @@ Rgb prefilter_ggx_brute_force(const CubeMap& radiance, const Vec3& r, double rou
     weight += w;
   }
   return weight > 0.0 ? sum / weight : Rgb{};
-}
-
-namespace {
-
-// Texel (x, y) of a face, where x or y may be one texel outside [0, N): the kernel text's
-// cube_texel_across_edges (kernels/cube.sl) on this cube.
-Rgb texel_across_edges(const CubeMap& c, int face, int x, int y) {
-  const kernel::CubeTexels cube = cube_texels(c);
-  const kernel::IblTexels texels{&cube, 1, nullptr, 0};
-  const kernel::IblBinding bind(texels);
-  return kernel::cube_texel_across_edges(0, c.size, face, x, y);
-}
-
-}  // namespace
-
-Rgb sample_cube_seamless(const CubeMap& cube, const Vec3& dir) {
-  if (cube.size < 1) return {};
-  const kernel::CubeTexels c = cube_texels(cube);
-  const kernel::IblTexels texels{&c, 1, nullptr, 0};
-  const kernel::IblBinding bind(texels);
-  return kernel::cube_sample_seamless(0, dir);
 }
 
 GgxChainTexels::GgxChainTexels(const GgxPrefilteredCube& chain) {

@@ -47,7 +47,7 @@
 #include <vector>
 
 #include "shadelab/envmap/base/cubemap.h"
-#include "shadelab/envmap/diffuse/irradiance.h"
+#include "shadelab/envmap/base/progress.h"
 #include "shadelab/envmap/specular/dfg.h"
 
 namespace shadelab {
@@ -116,10 +116,6 @@ GgxPrefilteredCube prefilter_ggx(const CubeMap& radiance, const GgxPrefilterOpti
 // The reference: out(R) of the formula above summed over every input texel with its exact solid angle
 // (no sampling, no pyramid), at perceptual roughness r > 0. O(6 N^2) per direction.
 Rgb prefilter_ggx_brute_force(const CubeMap& radiance, const Vec3& r, double roughness);
-
-// A bilinear lookup at direction dir that crosses face edges (the reads of prefilter_ggx): the kernel text
-// kernels/cube.sl cube_sample_seamless on this cube. Black for an empty cube.
-Rgb sample_cube_seamless(const CubeMap& cube, const Vec3& dir);
 
 // The chain read as a shader reads it for perceptual roughness r (the mapping's lod(r)): the kernel text
 // kernels/game_ibl.sl ggx_chain_read, sample_cube_seamless in the two levels around the lod, linear between
