@@ -8,7 +8,7 @@ lower mean AND max error than cmft on every level, measured against the brute-fo
 Both programs filter the same 6 x SIZE^2 cube (`shadelab bake convert HDRI --size SIZE` as an EXR cross for
 shadelab, and that EXR converted to rgba32f KTX 1 for cmft: the same texels) with the same normalized Phong lobes: level i of M has exponent
 n_i = 2^(scale (1 - i/(M-1)) + bias) (cmft's --glossScale / --glossBias; shadelab's --gloss-scale /
---gloss-bias, prefilter_exponent in src/shadelab/envmap/prefilter.cpp). Both write rgba32f KTX 1.
+--gloss-bias, prefilter_exponent in src/shadelab/envmap/specular/prefilter.cpp). Both write rgba32f KTX 1.
 
 The reference (independent of both): for S output texels per level (a fixed random choice, the same for
 both), the texel centre r of face f (OpenGL table 8.19, docs/envmap.md) and

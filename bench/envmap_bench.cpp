@@ -34,13 +34,13 @@
 #include <string>
 #include <vector>
 
-#include "shadelab/envmap/irradiance.h"
-#include "shadelab/envmap/latlong.h"
-#include "shadelab/envmap/prefilter.h"
-#include "shadelab/envmap/prefilter_ggx.h"
-#include "shadelab/envmap/sh.h"
-#include "shadelab/envmap/split_sum_taps.h"
-#include "shadelab/envmap/simd.h"
+#include "shadelab/envmap/diffuse/irradiance.h"
+#include "shadelab/envmap/base/latlong.h"
+#include "shadelab/envmap/specular/prefilter.h"
+#include "shadelab/envmap/specular/prefilter_ggx.h"
+#include "shadelab/envmap/diffuse/sh.h"
+#include "shadelab/envmap/specular/split_sum_taps.h"
+#include "shadelab/envmap/base/simd.h"
 #include "shadelab/image/image_io.h"
 
 #if defined(__GNUC__) && !defined(__clang__)
@@ -344,7 +344,7 @@ BENCHMARK(prefilter_ggx_chain)->Unit(benchmark::kMillisecond)->UseRealTime()->It
 
 // The split sum's chain reads per shading point on a 64^2 GGX chain of the HDRI (the game renderer's size):
 // Arg 0, one read along R (Karis 2013 as published; the lobe reads are two such reads), against Arg N, the
-// filtered taps of envmap/split_sum_taps.h (N taps, both parts), over the same 4096 points (N.V, roughness
+// filtered taps of envmap/specular/split_sum_taps.h (N taps, both parts), over the same 4096 points (N.V, roughness
 // and normal on a fixed grid); items = shading points.
 void split_sum_reads(benchmark::State& state) {
   static const GgxPrefilteredCube chain = prefilter_ggx(latlong_to_cube(hdri(), 64), GgxPrefilterOptions{});

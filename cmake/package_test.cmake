@@ -20,7 +20,8 @@ set(prefix ${WORK_DIR}/prefix)
 run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 
 # Headers per module folder, without tests.
-foreach(header shadelab/brdf/registry.h shadelab/core/vec.h shadelab/render/path_tracer.h shadelab/envmap/sh.h)
+foreach(header shadelab/brdf/registry.h shadelab/core/vec.h shadelab/render/path_tracer.h
+    shadelab/envmap/base/cubemap.h shadelab/envmap/diffuse/sh.h shadelab/envmap/specular/prefilter_ggx.h)
   if(NOT EXISTS ${prefix}/include/${header})
     message(FATAL_ERROR "package test: ${prefix}/include/${header} was not installed")
   endif()

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "harness.h"
-#include "shadelab/envmap/ktx.h"
+#include "shadelab/envmap/base/ktx.h"
 
 using namespace shadelab;
 

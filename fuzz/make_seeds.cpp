@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "shadelab/envmap/ktx.h"
+#include "shadelab/envmap/base/ktx.h"
 #include "shadelab/image/image_io.h"
 
 using namespace shadelab;

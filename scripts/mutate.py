@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Mutation pass over the BRDF and environment code (issue 16, section 7; docs/testing.md, "Mutation pass").
 
-Each mutant is one small change to one line of src/shadelab/brdf/*.cpp, src/shadelab/envmap/*.cpp or the
+Each mutant is one small change to one line of src/shadelab/brdf/*.cpp, src/shadelab/envmap/*/*.cpp or the
 BRDF kernels (src/shadelab/kernels/*.sl, which brdf/ calls): an arithmetic operator swapped (+ -, * /), a
 comparison loosened or tightened, a numeric constant changed, or one of the named mutants below (the two
 injected bugs that once survived the suite). For every mutant the script applies it, rebuilds the tests
@@ -52,7 +52,8 @@ MODULES = {
                      ("src/shadelab/shadelab_analysis_tests", "analysis")],
     },
     "envmap": {
-        "globs": [("src/shadelab/envmap", ".cpp"), ("src/shadelab/kernels", ".sl")],
+        "globs": [("src/shadelab/envmap/base", ".cpp"), ("src/shadelab/envmap/diffuse", ".cpp"),
+                  ("src/shadelab/envmap/specular", ".cpp"), ("src/shadelab/kernels", ".sl")],
         "only_files": {"sh9.sl"},  # of the kernels: the SH evaluation envmap uses
         "skip_files": set(),
         "targets": ["shadelab_envmap_tests"],

@@ -17,7 +17,7 @@
 #include "shadelab/color/rgb.h"
 #include "shadelab/core/error.h"
 #include "shadelab/core/vec.h"
-#include "shadelab/envmap/cubemap.h"
+#include "shadelab/envmap/base/cubemap.h"
 #include "shadelab/image/image.h"
 
 namespace shadelab::python {

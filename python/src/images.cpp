@@ -8,10 +8,11 @@
 
 #include "bindings.h"
 #include "common.h"
-#include "shadelab/envmap/environment.h"
-#include "shadelab/envmap/irradiance.h"
-#include "shadelab/envmap/latlong.h"
-#include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/base/environment.h"
+#include "shadelab/envmap/base/latlong.h"
+#include "shadelab/envmap/diffuse/environment_bakes.h"
+#include "shadelab/envmap/diffuse/irradiance.h"
+#include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/image/metrics.h"
 

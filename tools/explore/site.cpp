@@ -24,9 +24,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "shadelab/envmap/dfg.h"
-#include "shadelab/envmap/prefilter.h"
-#include "shadelab/envmap/split_sum_lobes.h"
+#include "shadelab/envmap/specular/dfg.h"
+#include "shadelab/envmap/specular/prefilter.h"
+#include "shadelab/envmap/specular/split_sum_lobes.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/game_renderer.h"

@@ -8,11 +8,12 @@
 #include <filesystem>
 #include <string>
 
-#include "shadelab/envmap/cubemap.h"
-#include "shadelab/envmap/dfg.h"
-#include "shadelab/envmap/ktx2.h"
-#include "shadelab/envmap/prefilter_ggx.h"
-#include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/base/cubemap.h"
+#include "shadelab/envmap/base/ktx2.h"
+#include "shadelab/envmap/diffuse/irradiance.h"
+#include "shadelab/envmap/diffuse/sh.h"
+#include "shadelab/envmap/specular/dfg.h"
+#include "shadelab/envmap/specular/prefilter_ggx.h"
 #include "shadelab/image/image.h"
 
 namespace shadelab::cli {

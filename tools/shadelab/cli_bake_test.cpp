@@ -8,10 +8,10 @@
 #include <numbers>
 
 #include "cli_run.h"
-#include "shadelab/envmap/cubemap.h"
-#include "shadelab/envmap/ktx.h"
-#include "shadelab/envmap/latlong.h"
-#include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/base/cubemap.h"
+#include "shadelab/envmap/base/ktx.h"
+#include "shadelab/envmap/base/latlong.h"
+#include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/image/image_io.h"
 
 namespace {

@@ -10,8 +10,8 @@
 
 #include "cli_run.h"
 #define SHADELAB_SOURCE_DIR SHADELAB_SCENES_DIR "/.."
-#include "shadelab/envmap/container_test_util.h"
-#include "shadelab/envmap/ktx.h"
+#include "shadelab/envmap/base/container_test_util.h"
+#include "shadelab/envmap/base/ktx.h"
 #include "shadelab/image/image_io.h"
 
 namespace {

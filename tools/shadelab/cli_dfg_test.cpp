@@ -10,7 +10,7 @@
 #include <string>
 
 #include "cli_run.h"
-#include "shadelab/envmap/dfg.h"
+#include "shadelab/envmap/specular/dfg.h"
 #include "shadelab/image/image_io.h"
 
 namespace {

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "cli_run.h"
-#include "shadelab/envmap/ktx.h"
-#include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/base/ktx.h"
+#include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/image/image_io.h"
 
 namespace {

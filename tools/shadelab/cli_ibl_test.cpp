@@ -14,10 +14,10 @@
 
 #include "cli_run.h"
 #define SHADELAB_SOURCE_DIR SHADELAB_SCENES_DIR "/.."
-#include "shadelab/envmap/container_test_util.h"
-#include "shadelab/envmap/split_sum_lobes.h"
-#include "shadelab/envmap/cubemap.h"
-#include "shadelab/envmap/latlong.h"
+#include "shadelab/envmap/base/container_test_util.h"
+#include "shadelab/envmap/specular/split_sum_lobes.h"
+#include "shadelab/envmap/base/cubemap.h"
+#include "shadelab/envmap/base/latlong.h"
 #include "shadelab/image/image_io.h"
 
 namespace {

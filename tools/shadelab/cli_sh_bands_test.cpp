@@ -10,7 +10,7 @@
 #include <set>
 
 #include "cli_run.h"
-#include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/image/image_io.h"
 
 namespace {

@@ -1,5 +1,5 @@
 // shadelab bake dfg [--size N] [--multiscatter] [--samples N] --out FILE [--json]: the split-sum DFG table
-// of the height-correlated Smith GGX model (envmap/dfg.h) as engines load it beside a prefiltered cube.
+// of the height-correlated Smith GGX model (envmap/specular/dfg.h) as engines load it beside a prefiltered cube.
 //
 // Outputs by extension: .exr (float32 R G B: A, B, and A + B with --multiscatter, else 0), .h (a C header
 // of float arrays), .ktx2 (a 2D texture: RG16F = A, B; with --multiscatter RGBA16F = A, B, A + B, 1).
@@ -13,8 +13,8 @@
 
 #include "bake_shared.h"
 #include "cli_common.h"
-#include "shadelab/envmap/dfg.h"
-#include "shadelab/envmap/ktx2.h"
+#include "shadelab/envmap/base/ktx2.h"
+#include "shadelab/envmap/specular/dfg.h"
 #include "shadelab/image/image.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/kernels/kernels.h"

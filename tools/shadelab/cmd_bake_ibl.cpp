@@ -6,7 +6,7 @@
 //   irradiance.ktx2|dds the cosine-convolved irradiance cube (bake irradiance)
 //   sh9.json           the SH9 coefficients and their convention (bake sh)
 //   dfg.ktx2           the DFG table, RG16F (RGBA16F with --multiscatter) (bake dfg)
-//   split_sum_lobes.json the lobe-matched lookup's table (envmap/split_sum_lobes.h): where and how rough to read
+//   split_sum_lobes.json the lobe-matched lookup's table (envmap/specular/split_sum_lobes.h): where and how rough to read
 //                      the specular cube for each of the split sum's two parts, per (N.V, roughness)
 //   manifest.json      each file's container, format, size, levels, faces and the conventions
 // Every file is computed and encoded first, then all are written as one step (write_files_atomically): a
@@ -23,11 +23,11 @@
 
 #include "bake_shared.h"
 #include "cli_common.h"
-#include "shadelab/envmap/dds.h"
-#include "shadelab/envmap/irradiance.h"
-#include "shadelab/envmap/ktx2.h"
-#include "shadelab/envmap/split_sum_lobes.h"
-#include "shadelab/envmap/texel_format.h"
+#include "shadelab/envmap/base/dds.h"
+#include "shadelab/envmap/base/ktx2.h"
+#include "shadelab/envmap/base/texel_format.h"
+#include "shadelab/envmap/diffuse/irradiance.h"
+#include "shadelab/envmap/specular/split_sum_lobes.h"
 #include "shadelab/image/image_io.h"
 
 namespace shadelab::cli {
@@ -39,7 +39,7 @@ namespace fs = std::filesystem;
 nlohmann::json split_sum_lobes_json(const SplitSumLobeTable& t) {
   nlohmann::json texels = nlohmann::json::array();
   for (const SplitSumLobes& l : t.all()) texels.push_back({l.a.angle, l.a.roughness, l.b.angle, l.b.roughness});
-  return {{"content", "the split sum's lobe-matched lookup (shadelab, envmap/split_sum_lobes.h): for each part, the "
+  return {{"content", "the split sum's lobe-matched lookup (shadelab, envmap/specular/split_sum_lobes.h): for each part, the "
                       "direction and perceptual roughness at which to read the specular cube so that the read matches "
                       "the first moments (mean direction, spread) of that part's true lobe"},
           {"size", t.size()},

@@ -15,7 +15,7 @@
 #include "shadelab/brdf/registry.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/image/metrics.h"
-#include "shadelab/envmap/split_sum_taps.h"
+#include "shadelab/envmap/specular/split_sum_taps.h"
 #include "shadelab/plot/plot.h"
 #include "shadelab/render/ibl_error.h"
 #include "shadelab/render/threads.h"

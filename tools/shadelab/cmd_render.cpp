@@ -16,7 +16,7 @@
 
 #include "cli_common.h"
 #include "progress.h"
-#include "shadelab/envmap/split_sum_taps.h"
+#include "shadelab/envmap/specular/split_sum_taps.h"
 #include "shadelab/render/film.h"
 #include "shadelab/render/game_renderer.h"
 #include "shadelab/render/path_tracer.h"

@@ -117,13 +117,13 @@ std::string html_page(const IblErrorMap& map, const std::string& input, double s
     h << "<h2>Split sum read per part at its lobe's first moments</h2>\n"
          "<p>The same chain and table (the same storage), read twice: f0 A along the mean direction of the A lobe "
          "and at the chain roughness of the same spread, f90 B likewise for the B (Fresnel) lobe "
-         "(envmap/split_sum_lobes.h, kernels/game_ambient.sl game_split_sum_lobe_direction).</p>\n";
+         "(envmap/specular/split_sum_lobes.h, kernels/game_ambient.sl game_split_sum_lobe_direction).</p>\n";
   } else if (map.correction == GameSplitSumDirection::filtered) {
     h << fmt::format("<h2>Split sum with each part filtered over its own lobe ({} taps)</h2>\n"
                      "<p>The same chain and table (the same storage), read at {} taps drawn from the visible normals "
                      "of the true lobe, each with the footprint of its share of solid angle (filtered importance "
                      "sampling); f0 A and f90 B each the weighted mean of its own lobe's taps "
-                     "(envmap/split_sum_taps.h).</p>\n", map.taps, map.taps);
+                     "(envmap/specular/split_sum_taps.h).</p>\n", map.taps, map.taps);
   } else {
     h << "<h2>Split sum read along the dominant direction normalize(mix(R, n, &alpha;<sup>2</sup>))</h2>\n"
          "<p>The same chain and table (the same storage), looked up toward the normal as the lobe leans at oblique "

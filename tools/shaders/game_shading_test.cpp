@@ -10,7 +10,7 @@
 #include "export.h"
 #include "glslang.h"
 #include "shadelab/core/constants.h"
-#include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/kernels/kernels.h"
 #include "shadelab/sampling/rng.h"
 #include "verify.h"

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "glslang.h"
-#include "shadelab/envmap/dfg.h"
+#include "shadelab/envmap/specular/dfg.h"
 #include "shadelab/kernels/kernels.h"
 #include "shadelab/render/camera_model.h"
 #include "shadelab/render/game_renderer.h"

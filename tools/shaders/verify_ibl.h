@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "shadelab/core/error.h"
-#include "shadelab/envmap/ktx2_reader.h"
-#include "shadelab/envmap/sh.h"
-#include "shadelab/envmap/split_sum_lobes.h"
+#include "shadelab/envmap/base/ktx2_reader.h"
+#include "shadelab/envmap/diffuse/sh.h"
+#include "shadelab/envmap/specular/split_sum_lobes.h"
 #include "verify.h"
 #include "export.h"
 

@@ -1,6 +1,6 @@
 // brdf/game_lobe.h and the game-shading kernels it feeds (kernels/game_ambient.sl, the point-light and
 // game-colour helpers of game_shading.sl, kernels/display.sl), each against an independent computation:
-// the prefiltered level inverts envmap/prefilter.h's gloss mapping; the albedo lookup is exact at bin
+// the prefiltered level inverts envmap/specular/prefilter.h's gloss mapping; the albedo lookup is exact at bin
 // centres and linear between them; the mirror direction keeps the angle to the normal; the specular albedo
 // table of a Phong lobe matches the closed-form albedo of the zoo at normal view; the display transform's
 // sRGB codes match the published IEC 61966-2-1 values.
@@ -14,7 +14,7 @@
 #include "shadelab/brdf/registry.h"
 #include "shadelab/core/constants.h"
 #include "shadelab/core/frame.h"
-#include "shadelab/envmap/prefilter.h"
+#include "shadelab/envmap/specular/prefilter.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {

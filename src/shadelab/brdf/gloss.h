@@ -15,7 +15,7 @@
 namespace shadelab {
 
 // The Phong exponent (R.L)^n of a Blinn-Phong lobe (N.H)^n: n / 4 (the half vector turns half as fast as L,
-// so the two lobes have the same angular width near their peak; envmap/prefilter.h).
+// so the two lobes have the same angular width near their peak; envmap/specular/prefilter.h).
 constexpr double phong_exponent_from_blinn_phong(double n_blinn) { return n_blinn / 4.0; }
 
 struct GlossEncoding {

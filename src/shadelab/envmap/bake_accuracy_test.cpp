@@ -23,10 +23,10 @@
 #include <vector>
 
 #include "shadelab/core/constants.h"
-#include "shadelab/envmap/irradiance.h"
-#include "shadelab/envmap/latlong.h"
-#include "shadelab/envmap/prefilter.h"
-#include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/base/latlong.h"
+#include "shadelab/envmap/diffuse/irradiance.h"
+#include "shadelab/envmap/diffuse/sh.h"
+#include "shadelab/envmap/specular/prefilter.h"
 #include "shadelab/image/image_io.h"
 
 namespace shadelab {

@@ -14,16 +14,16 @@
 #include <cstdio>
 #include <vector>
 
-#include "shadelab/envmap/cubemap.h"
-#include "shadelab/envmap/dfg.h"
-#include "shadelab/envmap/prefilter_ggx.h"
-#include "shadelab/envmap/split_sum_lobes.h"
+#include "shadelab/envmap/base/cubemap.h"
+#include "shadelab/envmap/specular/dfg.h"
+#include "shadelab/envmap/specular/prefilter_ggx.h"
+#include "shadelab/envmap/specular/split_sum_lobes.h"
 #include "shadelab/sampling/rng.h"
 
 namespace shadelab {
 namespace {
 
-// ---- The C++ before 2026-12-07 (envmap/cubemap.h, prefilter_ggx.cpp, dfg.cpp), the reference. ----
+// ---- The C++ before 2026-12-07 (envmap/base/cubemap.h, prefilter_ggx.cpp, dfg.cpp), the reference. ----
 CubeCoord old_cube_coord(const Vec3& r) {
   const double ax = std::abs(r.x), ay = std::abs(r.y), az = std::abs(r.z);
   CubeCoord c;

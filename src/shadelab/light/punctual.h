@@ -15,7 +15,7 @@ namespace shadelab {
 struct DirectionalLight {
   Vec3 to_light{0.0, 0.0, 1.0};  // unit direction from the scene toward the light
   Rgb irradiance;                // E_perp, W/m^2
-  // Game mode only: add the light to the SH9 ambient (D3DX-style, envmap/sh.h) instead of shading it per
+  // Game mode only: add the light to the SH9 ambient (D3DX-style, envmap/diffuse/sh.h) instead of shading it per
   // pixel, as engines do for fill lights. The reference renders it exactly either way.
   bool game_sh = false;
 };

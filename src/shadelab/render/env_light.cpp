@@ -5,7 +5,7 @@
 
 #include "shadelab/core/constants.h"
 #include "shadelab/core/frame.h"
-#include "shadelab/envmap/latlong.h"
+#include "shadelab/envmap/base/latlong.h"
 #include "shadelab/sampling/warp.h"
 
 namespace shadelab {

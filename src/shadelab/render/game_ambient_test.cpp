@@ -6,7 +6,7 @@
 
 #include "shadelab/brdf/registry.h"
 #include "shadelab/core/constants.h"
-#include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/light/units.h"
 #include "shadelab/render/game_renderer.h"
 #include "shadelab/render/path_tracer.h"

@@ -39,11 +39,11 @@
 
 #include <memory>
 
-#include "shadelab/envmap/dfg.h"
-#include "shadelab/envmap/prefilter.h"
-#include "shadelab/envmap/prefilter_ggx.h"
-#include "shadelab/envmap/sh.h"
-#include "shadelab/envmap/split_sum_lobes.h"
+#include "shadelab/envmap/specular/dfg.h"
+#include "shadelab/envmap/specular/prefilter.h"
+#include "shadelab/envmap/specular/prefilter_ggx.h"
+#include "shadelab/envmap/diffuse/sh.h"
+#include "shadelab/envmap/specular/split_sum_lobes.h"
 #include "shadelab/render/env_light.h"
 #include "shadelab/render/path_tracer.h"
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "shadelab/envmap/latlong.h"
-#include "shadelab/envmap/sh.h"
+#include "shadelab/envmap/base/latlong.h"
+#include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/light/units.h"
 #include "shadelab/render/test_scenes.h"
@@ -151,7 +151,7 @@ TEST(GameRenderer, TheGgxFamilyInAWhiteFurnace) {
 TEST(GameRenderer, LambertSphereUnderEveryBlenderWorldWithinTheShBound) {
   // SH9 diffuse game shading against the reference on a Lambert sphere (it sees only the environment):
   // |game - reference| <= kd/pi K sqrt(R) + 4 sigma, K = 0.1279158 and R the energy SH9 leaves out
-  // (envmap/blender_worlds_test.cpp derives the bound).
+  // (envmap/diffuse/blender_worlds_test.cpp derives the bound).
   const std::filesystem::path dir = SHADELAB_BLENDER_WORLDS;
   const double kd = 0.8;
   for (const char* name : {"city", "courtyard", "forest", "interior", "night", "studio", "sunrise", "sunset"}) {

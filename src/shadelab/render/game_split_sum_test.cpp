@@ -19,8 +19,8 @@
 #include <string>
 
 #include "shadelab/brdf/registry.h"
-#include "shadelab/envmap/dfg.h"
-#include "shadelab/envmap/prefilter_ggx.h"
+#include "shadelab/envmap/specular/dfg.h"
+#include "shadelab/envmap/specular/prefilter_ggx.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/render/game_renderer.h"
 #include "shadelab/render/test_scenes.h"

@@ -132,10 +132,10 @@ std::string split_sum_correction_text(GameSplitSumDirection correction) {
     case GameSplitSumDirection::dominant: return "dominant: normalize(mix(R, n, alpha^2)), alpha = roughness^2";
     case GameSplitSumDirection::lobes:
       return "lobes: f0 A read along and at the roughness of the A lobe's first moments, f90 B of the B lobe's "
-             "(envmap/split_sum_lobes.h)";
+             "(envmap/specular/split_sum_lobes.h)";
     case GameSplitSumDirection::filtered:
       return "filtered: f0 A and f90 B each the mean of its own lobe over taps of the chain, each read with its "
-             "share of solid angle (envmap/split_sum_taps.h)";
+             "share of solid angle (envmap/specular/split_sum_taps.h)";
   }
   return "";
 }

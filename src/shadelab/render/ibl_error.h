@@ -11,10 +11,10 @@
 //   mirror direction R as Karis 2013 publishes it (GameSplitSumDirection::mirror);
 // - the corrected shortcut: the same chain and table read as options.correction says: by default each part
 //   (f0 A, f90 B) along and at the roughness that match its true lobe's first moments
-//   (GameSplitSumDirection::lobes, envmap/split_sum_lobes.h), along the dominant direction
+//   (GameSplitSumDirection::lobes, envmap/specular/split_sum_lobes.h), along the dominant direction
 //   normalize(mix(R, n, alpha^2)) (GameSplitSumDirection::dominant, kernels/game_ambient.sl), or each part the
 //   mean of game.split_sum_taps reads over its own lobe (GameSplitSumDirection::filtered,
-//   envmap/split_sum_taps.h); the same storage.
+//   envmap/specular/split_sum_taps.h); the same storage.
 // The environment is baked once (bake_game_environment) for all the game renders of a map.
 // The camera looks at the sphere from `view_direction` (default +Z, along the horizon) through a narrow
 // field of view (distance 20, the sphere filling the frame), so each pixel's N.V is that of its centre ray

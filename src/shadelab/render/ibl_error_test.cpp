@@ -17,7 +17,7 @@
 
 #include "shadelab/core/constants.h"
 #include "shadelab/color/rgb.h"
-#include "shadelab/envmap/cubemap.h"
+#include "shadelab/envmap/base/cubemap.h"
 #include "shadelab/image/image_io.h"
 
 namespace shadelab {
@@ -275,7 +275,7 @@ TEST(IblError, TheLobeReadsCutTheGrazingError) {
   }
 }
 
-// The filtered taps (64, the default; envmap/split_sum_taps.h) on studio, the map where the lobe reads make
+// The filtered taps (64, the default; envmap/specular/split_sum_taps.h) on studio, the map where the lobe reads make
 // the grazing error worse (by 37% on the full dielectric map, docs/envmap.md): the grazing error of the two
 // rows cut by at least a quarter (measured 57.8%), and the whole map's mean error below R's.
 TEST(IblError, TheFilteredTapsCutTheGrazingErrorWhereTheLobeReadsDoNot) {

@@ -117,7 +117,7 @@ struct SkyModel {
 struct Environment {
   enum class Kind { none, uniform, image, sky } kind = Kind::none;
   Rgb uniform;               // kind uniform: radiance from every direction
-  Image latlong;             // kind image: radiance, lat-long (envmap/latlong.h mapping)
+  Image latlong;             // kind image: radiance, lat-long (envmap/base/latlong.h mapping)
   std::string source;        // the file, for messages
   double rotation_deg = 0.0; // about +Y, applied to the map
   double scale = 1.0;

@@ -554,7 +554,7 @@ uniform vec3 u_kd;
 uniform float u_exponent, u_wrap;
 out vec4 o_colour;
 
-// A cube map lookup as CubeMap::sample (envmap/cubemap.h: the face of OpenGL table 8.19, ties to X then Y,
+// A cube map lookup as CubeMap::sample (envmap/base/cubemap.h: the face of OpenGL table 8.19, ties to X then Y,
 // bilinear between texel centres, clamped at the face's edges); the browser test proves it equal to the C++.
 vec3 cube_sample(int block, vec3 r) {
   vec3 a = abs(r);
