@@ -4,6 +4,7 @@
 #include "shadelab/image/image_io.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -1256,6 +1257,28 @@ TEST_F(ImageIo, OutputSetOverTwoFoldersIsAllOrNothing) {
     std::sort(names.begin(), names.end());
     EXPECT_EQ(names, (std::vector<std::string>{"other.txt", d == std::string("a") ? "x.exr" : "x.png"})) << d;
   }
+}
+
+// Finding 5: a full disk part-way through a set (here a file size limit: the third file's write fails with
+// EFBIG) left the files written before it. Now every target is untouched and no temporary is left.
+TEST_F(ImageIo, WriteFilesAtomicallyFailingPartWayChangesNothing) {
+  for (const char* n : {"c.ktx2", "c_m0.exr", "c_m1.exr"}) write_file(path(n), {'o', 'l', 'd'});
+  const pid_t child = ::fork();
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{4096, 4096};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    const Result<bool> r = write_files_atomically({{path("c.ktx2"), text_bytes("new")},
+                                                   {path("c_m0.exr"), text_bytes("new")},
+                                                   {path("c_m1.exr"), std::vector<char>(8192, 'x')}});
+    const bool named = !r && r.error().message.find("c_m1.exr") != std::string::npos;
+    ::_exit(named ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the write did not fail naming c_m1.exr";
+  for (const char* n : {"c.ktx2", "c_m0.exr", "c_m1.exr"}) EXPECT_EQ(file_text(path(n)), "old") << n;
+  EXPECT_EQ(listing(), (std::vector<std::string>{"c.ktx2", "c_m0.exr", "c_m1.exr"}));
 }
 
 // Finding 5: the files of an older output of the same name go in the same step (remove_also), and a kill -9
