@@ -979,12 +979,13 @@ void settle_folder(const fs::path& dir, const std::vector<fs::path>& held) {
   }
   // Every other temporary and backup of ours here is a dead run's; so are ".NAME.tmp-PID-..." of dead PIDs
   // (the naming before output sets).
+  bool changed = !journals.empty();
+  std::vector<fs::path> stale;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     const std::string id = set_file_id(name);
-    std::error_code rm;
     if (!id.empty()) {
-      if (std::find(kept.begin(), kept.end(), id) == kept.end()) fs::remove(it->path(), rm);
+      if (std::find(kept.begin(), kept.end(), id) == kept.end()) stale.push_back(it->path());
       continue;
     }
     const std::size_t at = name.find(".tmp-");
@@ -993,9 +994,14 @@ void settle_folder(const fs::path& dir, const std::vector<fs::path>& held) {
     const char* first = name.data() + at + 5;
     const auto [p, err] = std::from_chars(first, name.data() + name.size(), pid);
     if (err != std::errc() || p == first || *p != '-' || pid <= 0 || pid > INT_MAX) continue;
-    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove(it->path(), rm);
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) stale.push_back(it->path());
   }
-  sync_folder(dir);
+  for (const fs::path& p : stale) {  // removed after the walk: a folder changed while iterated may skip entries
+    std::error_code rm;
+    fs::remove(p, rm);
+    changed = true;
+  }
+  if (changed) sync_folder(dir);
 }
 
 // Writes `bytes` to `tmp` (created exclusively, fsync'd); on failure nothing is left. The Error names `target`.
@@ -1169,8 +1175,10 @@ Result<bool> publish(const FileRefs& files, const PublishOptions& options, const
     fs::remove(r, ec);
   }
   remove_paths(backups);
-  for (const fs::path& d : folders) sync_folder(d);
-  for (const fs::path& jp : journals) ::unlink(jp.c_str());  // the other folders' copies first, the commit record last
+  if (journaled) {
+    for (const fs::path& d : folders) sync_folder(d);  // the renames are on disk before the journal goes
+    for (const fs::path& jp : journals) ::unlink(jp.c_str());  // the other folders' copies first, the commit record last
+  }
   for (const fs::path& d : folders) sync_folder(d);
   step("done");
   return true;

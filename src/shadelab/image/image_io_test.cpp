@@ -1168,6 +1168,19 @@ TEST_F(ImageIo, WriteFilesAtomicallyIsAllOrNothing) {
   EXPECT_EQ(read_all(path("a.bin")), "old a");
   EXPECT_EQ(listing(), (std::vector<std::string>{"a.bin", "c.bin"}));
   fs::remove(path("c.bin"));
+  // Issue 40: the folder in the way is now refused before anything is written; a rename that fails after the
+  // commit (the folder appears then) still puts the renamed targets back and removes the journal.
+  PublishOptions late;
+  late.after_step = [&](const char* step) {
+    if (std::string(step) == "committed") fs::create_directories(path("c.bin"));
+  };
+  const Result<bool> late_fail = write_files_atomically(
+      {{path("a.bin"), bytes("new a")}, {path("b.bin"), bytes("new b")}, {path("c.bin"), bytes("new c")}}, late);
+  ASSERT_FALSE(late_fail.has_value());
+  EXPECT_NE(late_fail.error().message.find("c.bin"), std::string::npos) << late_fail.error().message;
+  EXPECT_EQ(read_all(path("a.bin")), "old a");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"a.bin", "c.bin"}));
+  fs::remove(path("c.bin"));
   ASSERT_TRUE(write_files_atomically({{path("a.bin"), bytes("new a")}, {path("b.bin"), bytes("new b")}}).has_value());
   EXPECT_EQ(read_all(path("a.bin")), "new a");
   EXPECT_EQ(read_all(path("b.bin")), "new b");
