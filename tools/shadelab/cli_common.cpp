@@ -104,10 +104,16 @@ void check_output_writable(const NamedPath& out, OutputFolders folders) {
 }
 
 void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs, OutputFolders folders) {
+  // A missing input is the first thing to say (the command's reader says it, with its own words, right after
+  // these checks and before any work), so the outputs' folders are checked only when every input is there.
+  const bool inputs_present = std::all_of(inputs.begin(), inputs.end(), [](const NamedPath& in) {
+    std::error_code ec;
+    return in.path.empty() || fs::exists(fs::symlink_status(in.path, ec));
+  });
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const NamedPath& out = outputs[i];
     if (out.path.empty()) continue;
-    check_output_writable(out, folders);
+    if (inputs_present) check_output_writable(out, folders);
     for (const NamedPath& in : inputs) {
       if (!in.path.empty() && same_file(out.path, in.path)) {
         throw UsageError(out.option + ": '" + out.path.string() + "' is the input " + in.option + " ('" +

@@ -63,7 +63,7 @@ enum class OutputFolders { must_exist, created };
 // Paths are compared as real paths: symbolic links and ".." resolved, hard links of existing files found.
 // Every output is also checked writable before any work (issue 40, finding 8: a missing folder was reported
 // after the whole render): not a folder itself, its folder (or, for `created`, the nearest that exists) a
-// folder this process can write into.
+// folder this process can write into. (When an input is missing, that is said first, by the command's reader.)
 void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs,
                    OutputFolders folders = OutputFolders::must_exist);
 // The writability check alone, for one output.

@@ -195,6 +195,7 @@ TEST(CliOutputSets, UnwritableOutputsAreRefusedBeforeTheWork) {
   const std::string missing = (dir / "missing").string();
   const std::string hdr = constant_hdr().string();
   std::ofstream(dir / "file.txt") << "a file, not a folder";
+  const std::string part = (dir / "file.txt").string();  // an input that exists (merge reads it only later)
   const std::string under_file = (dir / "file.txt" / "sub").string();
   struct Case {
     std::string args, needle;
@@ -202,7 +203,7 @@ TEST(CliOutputSets, UnwritableOutputsAreRefusedBeforeTheWork) {
   const std::vector<Case> cases = {
       {"render " + scene + " --out " + missing + "/x.exr", "the folder '" + missing + "' does not exist"},
       {"render " + scene + " --out " + dir.string() + "/x.exr --png " + missing + "/x.png", "--png"},
-      {"merge a.exr b.exr --out " + missing + "/x.exr", "the folder '" + missing + "' does not exist"},
+      {"merge " + part + " --out " + missing + "/x.exr", "the folder '" + missing + "' does not exist"},
       {"bake specular " + hdr + " --out " + missing + "/s.ktx2", "the folder '" + missing + "' does not exist"},
       {"bake irradiance " + hdr + " --out " + missing + "/i.ktx2", "the folder '" + missing + "' does not exist"},
       {"bake convert " + hdr + " --out " + missing + "/c.exr", "the folder '" + missing + "' does not exist"},
