@@ -25,7 +25,11 @@ n=$2
 out=$3
 shift 3
 case "$n" in ''|*[!0-9]*) echo "render-slurm: N '$n' is not a positive integer" >&2; exit 2 ;; esac
-[ "$n" -ge 1 ] || { echo "render-slurm: N must be >= 1" >&2; exit 2; }
+# Decimal whatever its leading zeros ("010" is ten, not octal eight), short enough not to wrap (issue 40, 8).
+n=${n#"${n%%[!0]*}"}
+[ -n "$n" ] || { echo "render-slurm: N must be >= 1" >&2; exit 2; }
+[ "${#n}" -le 9 ] || { echo "render-slurm: N '$2' is too large" >&2; exit 2; }
+n=$((10#$n))
 [ -f "$scene" ] || { echo "render-slurm: '$scene': no such scene file" >&2; exit 2; }
 command -v sbatch >/dev/null || { echo "render-slurm: sbatch not found (a Slurm client)" >&2; exit 2; }
 
@@ -55,12 +59,15 @@ array=$(sbatch --parsable --job-name=shadelab-shards --array="0-$((n - 1))" --cp
 array=${array%%;*}
 wait_args=()
 [ "${WAIT:-0}" = 1 ] && wait_args=(--wait)
-# The merge lists the parts itself, so it fails (exit 2, nothing written) if any shard is missing.
+# The merge lists exactly this run's N parts, so it fails (exit 2, nothing written) if any shard is missing, and
+# parts of an earlier run with a larger N (part-K.exr, K >= N) stay out of it.
+merge_parts=""
+for ((i = 0; i < n; i++)); do merge_parts+=" $(q "$parts/part-$i.exr")"; done
 # shellcheck disable=SC2086
 rc=0
 merge=$(sbatch --parsable --job-name=shadelab-merge --dependency="afterok:$array" --kill-on-invalid-dep=yes \
   --output="$parts/log/merge.out" "${wait_args[@]}" ${SBATCH_ARGS:-} \
-  --wrap "$(q "$shadelab" merge) $(q "$parts")/part-*.exr --out $(q "$out")") || rc=$?
+  --wrap "$(q "$shadelab" merge)$merge_parts --out $(q "$out")") || rc=$?
 merge=${merge%%;*}
 echo "array ${array}"
 echo "merge ${merge}"

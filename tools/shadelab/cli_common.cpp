@@ -6,6 +6,9 @@
 #include <charconv>
 #include <cmath>
 #include <iostream>
+#include <system_error>
+
+#include <unistd.h>
 
 #include "shadelab/core/text.h"
 #include "shadelab/scene/default_scene.h"
@@ -74,10 +77,43 @@ std::string lower_ext(const fs::path& p) {
 
 }  // namespace
 
-void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs) {
+void check_output_writable(const NamedPath& out, OutputFolders folders) {
+  const fs::path& p = out.path;
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(p, ec);
+  if (fs::is_directory(st) || (fs::is_symlink(st) && fs::is_directory(p, ec))) {
+    throw UsageError(out.option + ": '" + p.string() + "' is a folder; give a file name");
+  }
+  // The folder the file goes into; where the command creates it, the nearest folder that exists.
+  fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  if (folders == OutputFolders::created) {
+    while (!fs::exists(dir, ec) && dir.has_parent_path() && dir.parent_path() != dir) dir = dir.parent_path();
+    if (!fs::exists(dir, ec)) dir = ".";
+  }
+  const fs::file_status ds = fs::status(dir, ec);
+  if (!fs::exists(ds)) {
+    throw UsageError(out.option + ": '" + p.string() + "': the folder '" + dir.string() + "' does not exist");
+  }
+  if (!fs::is_directory(ds)) {
+    throw UsageError(out.option + ": '" + p.string() + "': '" + dir.string() + "' is not a folder");
+  }
+  if (::access(dir.c_str(), W_OK | X_OK) != 0) {
+    throw UsageError(out.option + ": '" + p.string() + "': cannot write into the folder '" + dir.string() +
+                     "': " + std::system_category().message(errno));
+  }
+}
+
+void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs, OutputFolders folders) {
+  // A missing input is the first thing to say (the command's reader says it, with its own words, right after
+  // these checks and before any work), so the outputs' folders are checked only when every input is there.
+  const bool inputs_present = std::all_of(inputs.begin(), inputs.end(), [](const NamedPath& in) {
+    std::error_code ec;
+    return in.path.empty() || fs::exists(fs::symlink_status(in.path, ec));
+  });
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const NamedPath& out = outputs[i];
     if (out.path.empty()) continue;
+    if (inputs_present) check_output_writable(out, folders);
     for (const NamedPath& in : inputs) {
       if (!in.path.empty() && same_file(out.path, in.path)) {
         throw UsageError(out.option + ": '" + out.path.string() + "' is the input " + in.option + " ('" +

@@ -55,9 +55,19 @@ struct NamedPath {
   std::filesystem::path path;
 };
 
+// Whether a command's output folders must exist (most) or are created by the command (bake ibl --out-dir,
+// ibl-error --out, report --out).
+enum class OutputFolders { must_exist, created };
+
 // Refuses (UsageError, exit 2) an output that is one of the inputs or another output of the same command.
 // Paths are compared as real paths: symbolic links and ".." resolved, hard links of existing files found.
-void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
+// Every output is also checked writable before any work (issue 40, finding 8: a missing folder was reported
+// after the whole render): not a folder itself, its folder (or, for `created`, the nearest that exists) a
+// folder this process can write into. (When an input is missing, that is said first, by the command's reader.)
+void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs,
+                   OutputFolders folders = OutputFolders::must_exist);
+// The writability check alone, for one output.
+void check_output_writable(const NamedPath& output, OutputFolders folders = OutputFolders::must_exist);
 
 // Refuses a path whose extension (case-insensitive) is not one of `allowed` (".png", ...).
 void require_extension(const std::string& option, const std::filesystem::path& path,

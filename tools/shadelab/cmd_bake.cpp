@@ -19,6 +19,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -190,21 +191,24 @@ void check_layout(const BakeOptions& o, const fs::path& out) {
 }
 
 
-// Writes a mip chain to a container chosen by extension (.ktx, .ktx2, .dds); warns about clamped values.
-std::uint64_t write_container(const std::vector<CubeMap>& levels, const fs::path& path, TexelFormat format,
-                              const KtxMetadata& metadata) {
+// The bytes of a mip chain in a container chosen by extension (.ktx, .ktx2, .dds); warns about clamped values.
+std::vector<char> encode_container(const std::vector<CubeMap>& levels, const fs::path& path, TexelFormat format,
+                                   const KtxMetadata& metadata, std::uint64_t* clamped) {
+  auto named = [&](Result<std::vector<char>> r) {
+    if (!r) throw UsageError("'" + path.string() + "': " + r.error().message);
+    return std::move(r).value();
+  };
   TexelEncodeInfo info;
   if (is_ktx(path)) {
     KtxEncodeInfo k;
-    unwrap(write_ktx_cubemap(levels, path, format == TexelFormat::rgba32f ? KtxPixelType::float32 : KtxPixelType::half, &k));
+    std::vector<char> bytes =
+        named(encode_ktx_cubemap(levels, format == TexelFormat::rgba32f ? KtxPixelType::float32 : KtxPixelType::half, &k));
     report_clamped(path, k);
-    return k.clamped_values;
+    *clamped = k.clamped_values;
+    return bytes;
   }
-  if (is_ktx2(path)) {
-    unwrap(write_ktx2_cubemap(levels, path, format, metadata, &info));
-  } else {
-    unwrap(write_dds_cubemap(levels, path, format, &info));
-  }
+  std::vector<char> bytes = is_ktx2(path) ? named(encode_ktx2_cubemap(levels, format, metadata, &info))
+                                          : named(encode_dds_cubemap(levels, format, &info));
   if (info.clamped_values > 0 && format == TexelFormat::rgba16f) {
     report_clamped(path, KtxEncodeInfo{info.clamped_values});
   } else if (info.clamped_values > 0) {
@@ -215,7 +219,38 @@ std::uint64_t write_container(const std::vector<CubeMap>& levels, const fs::path
     warn(fmt::format("{}: {} negative (or NaN) values were written as 0 ({} is unsigned)", path.string(),
                      info.negative_values, texel_format_name(format)));
   }
-  return info.clamped_values;
+  *clamped = info.clamped_values;
+  return bytes;
+}
+
+// Writes a mip chain to a container chosen by extension (.ktx, .ktx2, .dds); warns about clamped values.
+std::uint64_t write_container(const std::vector<CubeMap>& levels, const fs::path& path, TexelFormat format,
+                              const KtxMetadata& metadata) {
+  std::uint64_t clamped = 0;
+  const std::vector<char> bytes = encode_container(levels, path, format, metadata, &clamped);
+  unwrap(write_file_atomically(path, bytes));
+  return clamped;
+}
+
+// The EXR faces of `bake specular`'s chain OUT: "STEM_mLEVEL_FACE.exr" beside OUT.
+const char* const specular_face_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
+fs::path specular_face_path(const fs::path& out, std::size_t level, int face) {
+  return out.parent_path() / fmt::format("{}_m{}_{}.exr", out.stem().string(), level, specular_face_names[face]);
+}
+// Whether `name` is one of the EXR faces of a chain named `stem` (any level): a file of an older output of the
+// same name, removed when a new chain is published (issue 40, finding 5).
+bool is_specular_face_name(const std::string& name, const std::string& stem) {
+  const std::string prefix = stem + "_m";
+  if (name.size() < prefix.size() + 8 || name.compare(0, prefix.size(), prefix) != 0) return false;
+  std::size_t i = prefix.size();
+  const std::size_t digits = i;
+  while (i < name.size() && std::isdigit(static_cast<unsigned char>(name[i])) != 0) ++i;
+  if (i == digits || i - digits > 3) return false;
+  const std::string rest = name.substr(i);
+  for (const char* f : specular_face_names) {
+    if (rest == std::string("_") + f + ".exr") return true;
+  }
+  return false;
 }
 
 nlohmann::json format_json(const fs::path& out, TexelFormat f) {
@@ -699,11 +734,8 @@ void run_specular(const BakeOptions& o) {
     std::vector<NamedPath> v{{"--out", out}};
     if (o.exr_faces) {
       const int levels = mip_count > 0 ? mip_count : full_chain;
-      static const char* face_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
       for (int m = 0; m < levels; ++m) {
-        for (const char* f : face_names) {
-          v.push_back({"the EXR face", out.parent_path() / fmt::format("{}_m{}_{}.exr", out.stem().string(), m, f)});
-        }
+        for (int f = 0; f < 6; ++f) v.push_back({"the EXR face", specular_face_path(out, static_cast<std::size_t>(m), f)});
       }
     }
     return v;
@@ -743,18 +775,27 @@ void run_specular(const BakeOptions& o) {
     exponents = chain->exponents;
     levels = std::move(chain->levels);
   }
-  const std::uint64_t clamped = write_container(levels, out, format, ktx2_metadata("prefiltered specular radiance", mip_mapping));
+  // The container and its faces are one output set (issue 40, finding 5): encoded first, then published as a
+  // whole (write_files_atomically: temporaries, a journal, the renames), and the faces of an older chain of the
+  // same name that this one does not have (deeper levels, or all of them with --no-exr-faces) go in the same step.
+  std::uint64_t clamped = 0;
+  std::vector<std::pair<fs::path, std::vector<char>>> files;
+  files.emplace_back(out, encode_container(levels, out, format, ktx2_metadata("prefiltered specular radiance", mip_mapping),
+                                           &clamped));
   std::vector<std::string> faces;
   if (o.exr_faces) {
-    static const char* face_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
     for (std::size_t m = 0; m < levels.size(); ++m) {
-      for (std::size_t f = 0; f < 6; ++f) {
-        const fs::path path = out.parent_path() / fmt::format("{}_m{}_{}.exr", out.stem().string(), m, face_names[f]);
-        unwrap(write_image(levels[m].faces[f], path));
+      for (int f = 0; f < 6; ++f) {
+        const fs::path path = specular_face_path(out, m, f);
+        files.emplace_back(path, unwrap(encode_image(levels[m].faces[static_cast<std::size_t>(f)], path)));
         faces.push_back(path.string());
       }
     }
   }
+  PublishOptions publish;
+  const std::string stem = out.stem().string();
+  publish.remove_also = [stem](const fs::path& p) { return is_specular_face_name(p.filename().string(), stem); };
+  unwrap(write_files_atomically(files, publish));
   const std::string recorded_in = is_ktx2(out) ? "the KTX 2 key/value data, key shadelab.mip_mapping (JSON)"
                                                : "only here: .ktx, .dds and the EXR faces hold no shadelab metadata";
   if (o.json) {

@@ -148,7 +148,7 @@ void run_ibl(const IblOptions& o) {
     }
     outputs.push_back({"--out-dir", p});
   }
-  check_outputs({{"INPUT", o.input}}, outputs);
+  check_outputs({{"INPUT", o.input}}, outputs, OutputFolders::created);
 
   // Compute and encode everything.
   work_begins();
@@ -270,7 +270,16 @@ void run_ibl(const IblOptions& o) {
   }
   fs::create_directories(dir, ec);
   if (ec) throw UsageError("--out-dir: cannot create '" + dir.string() + "': " + ec.message());
-  auto written = write_files_atomically(files);
+  // One output set (issue 40, finding 7): a kill -9 between the renames is completed by the next writer into
+  // DIR; the cubes of the other container (an older bake with --container dds, say) go in the same step, since
+  // the manifest names only this set's.
+  PublishOptions publish;
+  const std::string other_ext = o.container == "ktx2" ? ".dds" : ".ktx2";
+  publish.remove_also = [other_ext](const fs::path& p) {
+    const std::string name = p.filename().string();
+    return name == "specular" + other_ext || name == "irradiance" + other_ext;
+  };
+  auto written = write_files_atomically(files, publish);
   if (!written) {
     for (auto it = created.rbegin(); it != created.rend(); ++it) fs::remove(*it, ec);  // only if empty
     throw UsageError(written.error().message);

@@ -100,8 +100,14 @@ void run_compare(const CompareCliOptions& o) {
   const ImageDifference d = unwrap(compare_images(a, b, co));
   Heatmap heat;
   if (!o.heatmap.empty() || !o.side_by_side.empty()) heat = unwrap(error_heatmap(a, b, co));
-  if (!o.heatmap.empty()) unwrap(write_image(heat.image, o.heatmap));
-  if (!o.side_by_side.empty()) unwrap(write_image(unwrap(side_by_side(a, b, heat.image, co)), o.side_by_side));
+  {  // the pictures are one output set (issue 40, finding 7): replaced together or not at all
+    std::vector<std::pair<std::filesystem::path, std::vector<char>>> files;
+    if (!o.heatmap.empty()) files.emplace_back(o.heatmap, unwrap(encode_image(heat.image, o.heatmap)));
+    if (!o.side_by_side.empty()) {
+      files.emplace_back(o.side_by_side, unwrap(encode_image(unwrap(side_by_side(a, b, heat.image, co)), o.side_by_side)));
+    }
+    unwrap(write_files_atomically(files));
+  }
 
   if (o.json) {
     nlohmann::json j = {{"a", o.a},

@@ -71,7 +71,7 @@ void run_ibl_error(const IblErrorCliOptions& o) {
   const std::vector<std::string> names = ibl_error_file_names();
   std::vector<NamedPath> outputs;
   for (const auto& n : names) outputs.push_back({"--out", dir / n});
-  check_outputs({{"INPUT", o.input}}, outputs);
+  check_outputs({{"INPUT", o.input}}, outputs, OutputFolders::created);
   Image latlong = unwrap(read_radiance_image(o.input));  // NaN, Inf or negative: exit 2
   if (latlong.width != 2 * latlong.height) {
     throw UsageError(fmt::format("'{}': {} x {} is not a 2:1 lat-long environment", o.input, latlong.width, latlong.height));

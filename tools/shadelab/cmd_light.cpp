@@ -57,6 +57,15 @@ void run_light(const LightOptions& o) {
                                                                         : "luminance";
   const double photometric = luminance(unwrap(convert_light(in, o.from, photometric_unit, std::max(-1.0, cos_outer))));
   const double y = luminance(out);
+  // A finite VALUE whose conversion overflows (1e308 game units in W/m2: x pi) is bad input, not "inf" (issue 40, 8).
+  if (!std::isfinite(out.r) || !std::isfinite(out.g) || !std::isfinite(out.b)) {
+    throw UsageError(fmt::format("VALUE: '{}' {} overflows when converted to {} (the result exceeds the largest double, "
+                                 "about 1.8e308)", o.value, o.from, o.to));
+  }
+  if (!std::isfinite(y) || !std::isfinite(photometric)) {  // printed beside the result: as much an answer
+    throw UsageError(fmt::format("VALUE: '{}' {} overflows: its {} in {} (683 x the luminance Y) exceeds the largest "
+                                 "double, about 1.8e308", o.value, o.from, photometric_name, photometric_unit));
+  }
   if (o.json) {
     print_json({{"value", to_json(out)}, {"unit", o.to}, {"from", {{"value", to_json(in)}, {"unit", o.from}}},
                 {"per_channel", true},

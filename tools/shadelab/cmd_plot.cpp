@@ -59,6 +59,9 @@ ChartSize check_chart_options(const ChartOptions& o) {
   if (!o.csv.empty() && std::filesystem::is_directory(o.csv)) {
     throw UsageError("--csv: '" + o.csv + "' is a directory");
   }
+  std::vector<NamedPath> outputs{{"--out", o.out}};
+  if (!o.csv.empty()) outputs.push_back({"--csv", o.csv});
+  check_outputs({}, outputs);  // writable, and not one file twice
   return size;
 }
 
@@ -76,14 +79,14 @@ std::string csv_field(const std::string& s) {
 // Shortest round-trip text of a number (fmt's default for double).
 std::string num(double v) { return fmt::format("{}", v); }
 
-void write_csv(const std::string& path, const std::string& text) {
-  if (path.empty()) return;
-  unwrap(write_file_atomically(path, std::vector<char>(text.begin(), text.end())));
-}
-
+// The chart and its --csv data are one output set (issue 40, finding 7): both replaced together or neither.
 template <typename Plot>
-void write_chart(const Plot& plot, const ChartOptions& o, const ChartSize& size) {
-  unwrap(write_plot(plot, o.out, size.width, size.height));
+void write_chart(const Plot& plot, const ChartOptions& o, const ChartSize& size, const std::string& csv) {
+  const PlotFormat format = unwrap(plot_format_from_path(o.out));
+  std::vector<std::pair<std::filesystem::path, std::vector<char>>> files;
+  files.emplace_back(o.out, unwrap(render_plot(plot, format, size.width, size.height)));
+  if (!o.csv.empty()) files.emplace_back(o.csv, std::vector<char>(csv.begin(), csv.end()));
+  unwrap(write_files_atomically(files));
 }
 
 nlohmann::json params_json(const ParamAssignments& params) {
@@ -206,8 +209,7 @@ void run_lobe(const LobeCliOptions& o) {
                       {"luminance", c.luminance},
                       {"plotted", plotted}});
   }
-  write_csv(o.chart.csv, csv);
-  write_chart(plot, o.chart, size);
+  write_chart(plot, o.chart, size, csv);
   if (o.chart.json) {
     print_json({{"plot", "lobe"},
                 {"out", o.chart.out},
@@ -283,8 +285,7 @@ void run_albedo_plot(const AlbedoCliOptions& o) {
                       {"converged", c.converged}});
     plot.series.push_back(std::move(s));
   }
-  write_csv(o.chart.csv, csv);
-  write_chart(plot, o.chart, size);
+  write_chart(plot, o.chart, size, csv);
   if (o.chart.json) {
     print_json({{"plot", "albedo"},
                 {"out", o.chart.out},
@@ -350,8 +351,7 @@ void run_fv(const FvCliOptions& o) {
                       {"minimalist", c.minimalist},
                       {"schlick_kelemen", c.schlick_kelemen}});
   }
-  write_csv(o.chart.csv, csv);
-  write_chart(plot, o.chart, size);
+  write_chart(plot, o.chart, size, csv);
   if (o.chart.json) {
     print_json({{"plot", "fv"},
                 {"out", o.chart.out},
@@ -461,8 +461,7 @@ void run_zoo_plot(const ZooCliOptions& o) {
       throw UsageError("--relative: none of the rows drawn has bounds (blinn-phong, blinn-phong-modified)");
     plot.lines.push_back({1.0, "closed form", std::nullopt, true});
   }
-  write_csv(o.chart.csv, csv);
-  write_chart(plot, o.chart, size);
+  write_chart(plot, o.chart, size, csv);
   if (o.chart.json) {
     print_json({{"plot", "zoo"},
                 {"relative", o.relative},

@@ -168,12 +168,12 @@ void run_report(const ReportOptions& o) {
       }
       for (const auto& n : ibl_error_file_names()) outputs.push_back({"--out", dir / "ibl_error" / n});
     }
-    check_outputs(scene_inputs(scene), outputs);
+    check_outputs(scene_inputs(scene), outputs, OutputFolders::created);
   }
   work_begins();
   std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw UsageError("--out: cannot create the folder '" + o.out + "': " + ec.message());
+  // Every file of the report is encoded first and published at the end as one output set (issue 40, 7).
+  std::vector<std::pair<fs::path, std::vector<char>>> files;
   const std::vector<int> ids = material_ids(scene);
   nlohmann::json sections = nlohmann::json::array();
   std::string body;
@@ -211,10 +211,12 @@ void run_report(const ReportOptions& o) {
     const ImageDifference d = unwrap(compare_images(game->beauty, ref->beauty, co));
     const Heatmap heat = unwrap(error_heatmap(game->beauty, ref->beauty, co));
     for (const auto& [img, name] : {std::pair{&ref->beauty, "reference"}, std::pair{&game->beauty, "game"}}) {
-      unwrap(write_image(tonemap(*img, 0.0, ToneCurve::filmic), dir / (kind + "_" + name + ".png")));
-      unwrap(write_image(*img, dir / (kind + "_" + name + ".exr")));
+      const fs::path png = dir / (kind + "_" + name + ".png"), exr = dir / (kind + "_" + name + ".exr");
+      files.emplace_back(png, unwrap(encode_image(tonemap(*img, 0.0, ToneCurve::filmic), png)));
+      files.emplace_back(exr, unwrap(encode_image(*img, exr)));
     }
-    unwrap(write_image(heat.image, dir / (kind + "_heatmap.png")));
+    const fs::path heat_png = dir / (kind + "_heatmap.png");
+    files.emplace_back(heat_png, unwrap(encode_image(heat.image, heat_png)));
     nlohmann::json materials = nlohmann::json::array();
     std::string rows;
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
@@ -271,8 +273,6 @@ void run_report(const ReportOptions& o) {
     io.threads = scene.settings.threads;
     const IblErrorMap map = unwrap(ibl_error_map(scene, "ggx", {}, io));
     const fs::path sub = dir / "ibl_error";
-    fs::create_directories(sub, ec);
-    if (ec) throw UsageError("--out: cannot create the folder '" + sub.string() + "': " + ec.message());
     IblErrorHeader header;
     header.input = scene.source + " (environment)";
     header.nv_bins = io.nv_bins;
@@ -280,7 +280,7 @@ void run_report(const ReportOptions& o) {
     header.spp = io.spp;
     header.specular_size = io.game.specular_size;
     header.seed = io.seed;
-    const nlohmann::json written = write_ibl_error_files(map, header, sub);
+    const nlohmann::json written = ibl_error_files(map, header, sub, files);
     const auto pct = [](double v) { return 100.0 * v; };
     body += fmt::format(
         "<h2>Image-based lighting: the shortcuts against the path tracer</h2>\n<p>A ggx sphere lit by this scene's "
@@ -310,7 +310,10 @@ void run_report(const ReportOptions& o) {
       "(0.889 kd at w = 0.5). Wrapped materials show the expected ratio beside the measured one.</p>\n{1}"
       "</body></html>\n",
       xml_escape(scene.source), body);
-  unwrap(write_file_atomically(dir / "index.html", std::vector<char>(html.begin(), html.end())));
+  files.emplace_back(dir / "index.html", std::vector<char>(html.begin(), html.end()));
+  fs::create_directories(o.ibl_error ? dir / "ibl_error" : dir, ec);
+  if (ec) throw UsageError("--out: cannot create the folder '" + o.out + "': " + ec.message());
+  unwrap(write_files_atomically(files));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (o.json) {
     nlohmann::json j = {{"scene", scene.source}, {"report", (dir / "index.html").string()}, {"sections", sections},

@@ -159,15 +159,14 @@ void run_export(const ShaderOptions& o, const std::string& model) {
   if (!o.tables_out.empty() && ex.tables_data.empty()) {
     throw UsageError("--tables-out: the model '" + model + "' with these parameters reads no tables");
   }
+  check_outputs({}, {{"--out", o.out}, {"--tables-out", o.tables_out}});  // writable, and not one file twice
   work_begins();
-  if (!o.tables_out.empty()) {
-    unwrap(write_file_atomically(o.tables_out, std::vector<char>(ex.tables_data.begin(), ex.tables_data.end())));
-  }
-  if (o.out.empty()) {
-    std::cout << ex.text;
-  } else {
-    unwrap(write_file_atomically(o.out, std::vector<char>(ex.text.begin(), ex.text.end())));
-  }
+  // The shader and its tables are one output set (issue 40, finding 7): replaced together or not at all.
+  std::vector<std::pair<std::filesystem::path, std::vector<char>>> files;
+  if (!o.tables_out.empty()) files.emplace_back(o.tables_out, std::vector<char>(ex.tables_data.begin(), ex.tables_data.end()));
+  if (!o.out.empty()) files.emplace_back(o.out, std::vector<char>(ex.text.begin(), ex.text.end()));
+  unwrap(write_files_atomically(files));
+  if (o.out.empty()) std::cout << ex.text;
 }
 
 void add_shader_command(CLI::App& app, Command& command) {

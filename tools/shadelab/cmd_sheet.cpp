@@ -247,8 +247,10 @@ void run_sheet(const SheetOptions& o) {
     }
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  unwrap(write_image(display, o.out));
-  if (!o.exr.empty()) unwrap(write_image(linear, o.exr));
+  // The sheet, its EXR and its CSV are one output set (issue 40, finding 7): published together below.
+  std::vector<std::pair<std::filesystem::path, std::vector<char>>> files;
+  files.emplace_back(o.out, unwrap(encode_image(display, o.out)));
+  if (!o.exr.empty()) files.emplace_back(o.exr, unwrap(encode_image(linear, o.exr)));
 
   const auto params_text = [](const ParamAssignments& params) {
     std::string out;
@@ -262,8 +264,9 @@ void run_sheet(const SheetOptions& o) {
       csv += fmt::format("{},{},{},{},{},{},{},{}\n", c.row, c.column, c.model,
                          p.find_first_of(",\"") == std::string::npos ? p : "\"" + p + "\"", c.x, c.y, o.cell, o.cell);
     }
-    unwrap(write_file_atomically(o.csv, std::vector<char>(csv.begin(), csv.end())));
+    files.emplace_back(o.csv, std::vector<char>(csv.begin(), csv.end()));
   }
+  unwrap(write_files_atomically(files));
   if (o.json) {
     nlohmann::json jrows = nlohmann::json::array();
     for (const auto& m : models) {

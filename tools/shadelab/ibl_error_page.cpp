@@ -148,7 +148,8 @@ std::vector<std::string> ibl_error_file_names() {
   return {"ibl_error.json", "split_sum_error.png", "split_sum_error.svg", "index.html", "corrected_error.png"};
 }
 
-nlohmann::json write_ibl_error_files(const IblErrorMap& map, const IblErrorHeader& h, const std::filesystem::path& dir) {
+nlohmann::json ibl_error_files(const IblErrorMap& map, const IblErrorHeader& h, const std::filesystem::path& dir,
+                               std::vector<std::pair<std::filesystem::path, std::vector<char>>>& out) {
   const double scale = std::max(0.01, map.split_sum_summary.max_abs);
   nlohmann::json rows = nlohmann::json::array();
   for (const IblErrorRow& row : map.split_sum) rows.push_back({{"roughness", row.roughness}, {"cells", cells_json(row)}});
@@ -170,12 +171,19 @@ nlohmann::json write_ibl_error_files(const IblErrorMap& map, const IblErrorHeade
                      {"grazing_reduction", map.grazing_reduction}}},
       {"sh", {{"cells", cells_json(map.sh)}, {"summary", summary_json(map.sh_summary)}}},
       {"outputs", files}, {"seconds", map.seconds}};
-  unwrap(write_file_atomically(dir / names[0], json_file_bytes(j)));
-  unwrap(write_image(heat_grid(map.split_sum, scale), dir / names[1]));
-  unwrap(write_plot(error_plot(map, h.input), dir / names[2]));
+  out.emplace_back(dir / names[0], json_file_bytes(j));
+  out.emplace_back(dir / names[1], unwrap(encode_image(heat_grid(map.split_sum, scale), dir / names[1])));
+  out.emplace_back(dir / names[2], unwrap(render_plot(error_plot(map, h.input), PlotFormat::svg)));
   const std::string page = html_page(map, h.input, scale);
-  unwrap(write_file_atomically(dir / names[3], std::vector<char>(page.begin(), page.end())));
-  unwrap(write_image(heat_grid(map.corrected, scale), dir / names[4]));
+  out.emplace_back(dir / names[3], std::vector<char>(page.begin(), page.end()));
+  out.emplace_back(dir / names[4], unwrap(encode_image(heat_grid(map.corrected, scale), dir / names[4])));
+  return j;
+}
+
+nlohmann::json write_ibl_error_files(const IblErrorMap& map, const IblErrorHeader& h, const std::filesystem::path& dir) {
+  std::vector<std::pair<std::filesystem::path, std::vector<char>>> files;
+  nlohmann::json j = ibl_error_files(map, h, dir, files);
+  unwrap(write_files_atomically(files));  // one output set (issue 40, finding 7)
   return j;
 }
 

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -28,8 +29,11 @@ struct IblErrorHeader {
 // The file names, in the order of the JSON's "outputs".
 std::vector<std::string> ibl_error_file_names();
 
-// Writes the files into dir (which must exist) and returns the JSON written as ibl_error.json. Throws
-// UsageError (cli_common.h) when a file cannot be written.
+// Writes the files into dir (which must exist) as one output set (write_files_atomically) and returns the JSON
+// written as ibl_error.json. Throws UsageError (cli_common.h) when a file cannot be written.
 nlohmann::json write_ibl_error_files(const IblErrorMap& map, const IblErrorHeader& h, const std::filesystem::path& dir);
+// The same files, encoded and appended to `out` for a caller that publishes them with others (report).
+nlohmann::json ibl_error_files(const IblErrorMap& map, const IblErrorHeader& h, const std::filesystem::path& dir,
+                               std::vector<std::pair<std::filesystem::path, std::vector<char>>>& out);
 
 }  // namespace shadelab::cli

@@ -4,6 +4,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -733,45 +734,283 @@ class SignalHold {
   SignalHold& operator=(const SignalHold&) = delete;
 };
 
-// Removes temporaries of our own naming (".NAME.tmp-PID-...") beside `target` whose process is gone: what a
-// kill -9 or a power cut during an earlier write left behind. Those of live processes are theirs.
-void remove_stale_temporaries(const fs::path& target) {
-  const std::string prefix = "." + target.filename().string() + ".tmp-";
-  std::error_code ec;
-  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) {
-      continue;
+// ---------------------------------------------------------------------------------------------- output sets
+//
+// Every file shadelab writes goes through publish(): one mechanism for a single file and for a set of files
+// that belong together (issue 40, findings 5 and 7; docs/design.md, "Output sets").
+//  1. The folder of every target is locked (flock on the folder itself, LOCK_EX, in the order of the folders'
+//     real paths, so two writers never wait on each other crosswise). Concurrent writers to one folder are
+//     serialised: each publishes a whole set, the last one wins, no mix.
+//  2. Under the lock, what a dead run left is settled (settle_folder): a committed journal is rolled forward,
+//     every other temporary of ours is removed; nobody else can own one, since a live writer holds the lock.
+//  3. Every file is written to its temporary beside its target (".NAME.set-ID.tmp", created exclusively,
+//     fsync'd); an existing target gets a hard link ".NAME.set-ID.old" so that a failed rename can undo.
+//  4. With more than one change, the journal ".shadelab-set-ID.journal" is written (fsync'd, ending in a line
+//     "end"): a copy in every other folder of the set first, then the one in the first folder, the commit point.
+//  5. The renames, then the removals (the files of an older output of the same name), then the journals go.
+// A kill -9 before the commit leaves temporaries only: the next writer into that folder removes them and the
+// old set stands. A kill -9 after it leaves a journal: the next writer into that folder completes the set.
+// A failed rename (after every target was checked to be no folder: an I/O error) puts the renamed targets back.
+
+constexpr const char* set_marker = ".set-";
+constexpr const char* journal_prefix = ".shadelab-set-";
+constexpr const char* journal_suffix = ".journal";
+
+// A folder, locked for as long as this object lives (or not, where the file system refuses flock).
+class FolderLock {
+ public:
+  explicit FolderLock(const fs::path& dir) {
+    m_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (m_fd < 0) return;
+    while (::flock(m_fd, LOCK_EX) != 0) {
+      if (errno == EINTR) continue;
+      ::close(m_fd);  // no locks on this file system: written unlocked, nothing settled
+      m_fd = -1;
+      return;
     }
-    long long pid = 0;
-    const char* first = name.data() + prefix.size();
-    const auto [p, err] = std::from_chars(first, name.data() + name.size(), pid);
-    if (err != std::errc() || p == first || *p != '-' || pid <= 0 || pid > INT_MAX) {
-      continue;
+  }
+  // Non-blocking: locked() says whether it was free.
+  FolderLock(const fs::path& dir, bool /*try_only*/) {
+    m_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (m_fd >= 0 && ::flock(m_fd, LOCK_EX | LOCK_NB) != 0) {
+      ::close(m_fd);
+      m_fd = -1;
     }
-    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
-      std::error_code remove_ec;
-      fs::remove(it->path(), remove_ec);
-    }
+  }
+  ~FolderLock() {
+    if (m_fd >= 0) ::close(m_fd);  // closing the last descriptor releases the lock
+  }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+  bool locked() const { return m_fd >= 0; }
+  void sync() const {
+    if (m_fd >= 0) ::fsync(m_fd);
+  }
+
+ private:
+  int m_fd = -1;
+};
+
+void sync_folder(const fs::path& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
   }
 }
 
-// Writes `bytes` to a new temporary file beside `target` (created exclusively, flushed with fsync) and
-// returns its path; on failure nothing is left. `who` starts the error message. The caller holds signals.
-Result<fs::path> write_temporary(const fs::path& target, const std::vector<char>& bytes, const char* who) {
-  remove_stale_temporaries(target);
-  static std::atomic<unsigned> counter{0};
-  const auto ticks = static_cast<unsigned long long>(std::chrono::steady_clock::now().time_since_epoch().count());
-  const std::string tmp_name = "." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                               std::to_string(counter.fetch_add(1)) + "-" + std::to_string(ticks % 1000000007ULL);
-  const fs::path tmp = target.parent_path() / tmp_name;
+// Percent-escapes the bytes a journal line cannot hold (control bytes, '%').
+std::string escape_path(const std::string& s) {
+  std::string out;
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || c == '%' || u == 0x7f) {
+      static const char* hex = "0123456789ABCDEF";
+      out += '%';
+      out += hex[u >> 4];
+      out += hex[u & 15];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
 
+std::string unescape_path(const std::string& s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '%' && i + 2 < s.size()) {
+      int v = 0;
+      const auto [p, err] = std::from_chars(s.data() + i + 1, s.data() + i + 3, v, 16);
+      if (err == std::errc() && p == s.data() + i + 3) {
+        out += static_cast<char>(v);
+        i += 2;
+        continue;
+      }
+    }
+    out += s[i];
+  }
+  return out;
+}
+
+struct Journal {
+  std::string id;
+  fs::path primary;              // the folder whose copy is the commit record
+  std::vector<fs::path> folders;  // every folder of the set (the primary first)
+  std::vector<std::pair<fs::path, fs::path>> renames;  // temporary -> target
+  std::vector<fs::path> backups;                       // hard links of replaced targets
+  std::vector<fs::path> removals;                      // files of an older output of the same name
+  bool complete = false;                               // ends in "end": it was written whole
+};
+
+std::string journal_text(const Journal& j) {
+  std::string t = "shadelab output set 1\nid " + j.id + "\nprimary " + escape_path(j.primary.string()) + "\n";
+  for (const fs::path& d : j.folders) t += "folder " + escape_path(d.string()) + "\n";
+  for (const auto& [tmp, target] : j.renames) {
+    t += "rename " + escape_path(tmp.string()) + "\n";
+    t += "to " + escape_path(target.string()) + "\n";
+  }
+  for (const fs::path& b : j.backups) t += "backup " + escape_path(b.string()) + "\n";
+  for (const fs::path& r : j.removals) t += "remove " + escape_path(r.string()) + "\n";
+  return t + "end\n";
+}
+
+Journal read_journal(const fs::path& path) {
+  Journal j;
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  fs::path pending;
+  bool header = false;
+  while (std::getline(in, line)) {
+    const std::size_t sp = line.find(' ');
+    const std::string key = line.substr(0, sp);
+    const std::string value = sp == std::string::npos ? std::string() : unescape_path(line.substr(sp + 1));
+    if (!header) {
+      if (line != "shadelab output set 1") return j;
+      header = true;
+    } else if (key == "id") {
+      j.id = value;
+    } else if (key == "primary") {
+      j.primary = value;
+    } else if (key == "folder") {
+      j.folders.emplace_back(value);
+    } else if (key == "rename") {
+      pending = value;
+    } else if (key == "to") {
+      j.renames.emplace_back(pending, fs::path(value));
+    } else if (key == "backup") {
+      j.backups.emplace_back(value);
+    } else if (key == "remove") {
+      j.removals.emplace_back(value);
+    } else if (line == "end") {
+      j.complete = !j.primary.empty();
+      return j;
+    }
+  }
+  return j;
+}
+
+fs::path journal_path(const fs::path& dir, const std::string& id) { return dir / (journal_prefix + id + journal_suffix); }
+
+bool is_journal_name(const std::string& name) {
+  return name.rfind(journal_prefix, 0) == 0 && name.size() > std::strlen(journal_prefix) + std::strlen(journal_suffix) &&
+         name.compare(name.size() - std::strlen(journal_suffix), std::string::npos, journal_suffix) == 0;
+}
+
+// ".NAME.set-ID.tmp" / ".NAME.set-ID.old": the set's id, or "" for another name.
+std::string set_file_id(const std::string& name) {
+  if (name.size() < 2 || name[0] != '.' || is_journal_name(name)) return "";
+  const bool tmp = name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0;
+  const bool old = name.size() > 4 && name.compare(name.size() - 4, 4, ".old") == 0;
+  if (!tmp && !old) return "";
+  const std::size_t at = name.rfind(set_marker);
+  if (at == std::string::npos || at == 0) return "";
+  const std::size_t from = at + std::strlen(set_marker);
+  return from < name.size() - 4 ? name.substr(from, name.size() - 4 - from) : "";
+}
+
+// The same folder, compared by real path.
+bool same_folder(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  return fs::equivalent(a, b, ec);
+}
+
+// Applies the part of a committed set that lies in `dir` (idempotent: a temporary already renamed is gone).
+void roll_forward_in(const Journal& j, const fs::path& dir) {
+  std::error_code ec;
+  for (const auto& [tmp, target] : j.renames) {
+    if (same_folder(target.parent_path(), dir) && fs::exists(fs::symlink_status(tmp, ec))) fs::rename(tmp, target, ec);
+  }
+  for (const fs::path& r : j.removals) {
+    if (same_folder(r.parent_path(), dir)) fs::remove(r, ec);
+  }
+  for (const fs::path& b : j.backups) {
+    if (same_folder(b.parent_path(), dir)) fs::remove(b, ec);
+  }
+  sync_folder(dir);
+}
+
+// Settles what dead runs left in `dir`, which this process holds locked; `held` are all the folders it holds.
+void settle_folder(const fs::path& dir, const std::vector<fs::path>& held) {
+  std::error_code ec;
+  std::vector<fs::path> journals;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (is_journal_name(it->path().filename().string())) journals.push_back(it->path());
+  }
+  std::vector<std::string> kept;  // ids whose files must stay (a set another folder has yet to settle)
+  for (const fs::path& jp : journals) {
+    const Journal j = read_journal(jp);
+    std::error_code rm;
+    if (!j.complete) {  // torn while being written: never committed
+      fs::remove(jp, rm);
+      continue;
+    }
+    const bool primary = same_folder(j.primary, dir);
+    const bool committed = primary || fs::exists(journal_path(j.primary, j.id), rm);
+    if (!committed) {  // a copy written before the commit: the set never happened
+      fs::remove(jp, rm);
+      continue;
+    }
+    roll_forward_in(j, dir);
+    if (!primary) {
+      fs::remove(jp, rm);
+      continue;
+    }
+    // The commit record goes last, once no other folder's copy is left.
+    bool all = true;
+    for (const fs::path& other : j.folders) {
+      if (same_folder(other, dir) || !fs::exists(journal_path(other, j.id), rm)) continue;
+      const bool held_here = std::any_of(held.begin(), held.end(), [&](const fs::path& h) { return same_folder(h, other); });
+      std::unique_ptr<FolderLock> lock;
+      if (!held_here) lock = std::make_unique<FolderLock>(other, true);
+      if (!held_here && !lock->locked()) {
+        all = false;
+        continue;
+      }
+      roll_forward_in(j, other);
+      fs::remove(journal_path(other, j.id), rm);
+      sync_folder(other);
+    }
+    if (all) {
+      fs::remove(jp, rm);
+    } else {
+      kept.push_back(j.id);
+    }
+  }
+  // Every other temporary and backup of ours here is a dead run's; so are ".NAME.tmp-PID-..." of dead PIDs
+  // (the naming before output sets).
+  bool changed = !journals.empty();
+  std::vector<fs::path> stale;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::string id = set_file_id(name);
+    if (!id.empty()) {
+      if (std::find(kept.begin(), kept.end(), id) == kept.end()) stale.push_back(it->path());
+      continue;
+    }
+    const std::size_t at = name.find(".tmp-");
+    if (name.empty() || name[0] != '.' || at == std::string::npos) continue;
+    long long pid = 0;
+    const char* first = name.data() + at + 5;
+    const auto [p, err] = std::from_chars(first, name.data() + name.size(), pid);
+    if (err != std::errc() || p == first || *p != '-' || pid <= 0 || pid > INT_MAX) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) stale.push_back(it->path());
+  }
+  for (const fs::path& p : stale) {  // removed after the walk: a folder changed while iterated may skip entries
+    std::error_code rm;
+    fs::remove(p, rm);
+    changed = true;
+  }
+  if (changed) sync_folder(dir);
+}
+
+// Writes `bytes` to `tmp` (created exclusively, fsync'd); on failure nothing is left. The Error names `target`.
+Result<bool> write_new_file(const fs::path& tmp, const fs::path& target, const std::vector<char>& bytes, const char* who) {
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) {
     return file_error(who, target, "cannot create a temporary file in its directory: " + errno_message(errno));
   }
-  auto fail = [&](const std::string& what, int err) -> Result<fs::path> {
+  auto fail = [&](const std::string& what, int err) -> Result<bool> {
     ::close(fd);
     ::unlink(tmp.c_str());
     return file_error(who, target, what + ": " + errno_message(err));
@@ -795,24 +1034,159 @@ Result<fs::path> write_temporary(const fs::path& target, const std::vector<char>
     ::unlink(tmp.c_str());
     return file_error(who, target, "cannot close: " + errno_message(err));
   }
-  return tmp;
+  return true;
 }
 
-// Writes `bytes` to a new temporary file beside `target`, then renames it over `target`. On any failure the
-// temporary is removed and `target` is untouched. Signals are held meanwhile (SignalHold).
-Result<bool> write_atomically(const fs::path& target, const std::vector<char>& bytes, const char* who) {
+std::string new_set_id() {
+  static std::atomic<unsigned> counter{0};
+  const auto ticks = static_cast<unsigned long long>(std::chrono::steady_clock::now().time_since_epoch().count());
+  return std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1)) + "-" +
+         std::to_string(ticks % 1000000007ULL);
+}
+
+using FileRefs = std::vector<std::pair<fs::path, const std::vector<char>*>>;
+
+Result<bool> publish(const FileRefs& files, const PublishOptions& options, const char* who) {
+  if (files.empty()) return true;
+  auto step = [&](const char* name) {
+    if (options.after_step) options.after_step(name);
+  };
+  // The folders, by real path; every target as its real folder / its name.
+  std::vector<fs::path> folders;
+  std::vector<fs::path> targets;
+  for (const auto& f : files) {
+    const fs::path& target = f.first;
+    if (target.filename().empty() || target.filename() == "." || target.filename() == "..") {
+      return file_error(who, target, "not a file name");
+    }
+    std::error_code ec;
+    const fs::path dir = fs::canonical(target.parent_path().empty() ? fs::path(".") : target.parent_path(), ec);
+    if (ec || !fs::is_directory(dir, ec)) {
+      return file_error(who, target, "its folder does not exist (or is not a folder)");
+    }
+    const fs::path real = dir / target.filename();
+    if (std::find(targets.begin(), targets.end(), real) != targets.end()) {
+      return file_error(who, target, "named twice in one output set");
+    }
+    if (fs::is_directory(fs::symlink_status(real, ec))) {
+      return file_error(who, target, "cannot replace the file: it is a folder");
+    }
+    targets.push_back(real);
+    if (std::find(folders.begin(), folders.end(), dir) == folders.end()) folders.push_back(dir);
+  }
+  std::sort(folders.begin(), folders.end());
+  std::vector<std::unique_ptr<FolderLock>> locks;
+  for (const fs::path& d : folders) locks.push_back(std::make_unique<FolderLock>(d));
   const SignalHold hold;
-  auto tmp = write_temporary(target, bytes, who);
-  if (!tmp) {
-    return tmp.error();
+  for (std::size_t i = 0; i < folders.size(); ++i) {
+    if (locks[i]->locked()) settle_folder(folders[i], folders);
   }
-  std::error_code ec;
-  fs::rename(*tmp, target, ec);
-  if (ec) {
-    ::unlink(tmp->c_str());
-    return file_error(who, target, "cannot replace the file: " + ec.message());
+  step("locked");
+
+  Journal j;
+  j.id = new_set_id();
+  j.primary = folders.front();
+  j.folders = folders;
+  std::vector<fs::path> temps;
+  auto remove_paths = [](const std::vector<fs::path>& paths) {
+    for (const fs::path& p : paths) ::unlink(p.c_str());
+  };
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const fs::path tmp = targets[i].parent_path() / ("." + targets[i].filename().string() + set_marker + j.id + ".tmp");
+    if (auto ok = write_new_file(tmp, files[i].first, *files[i].second, who); !ok) {
+      remove_paths(temps);
+      return ok.error();
+    }
+    temps.push_back(tmp);
+    j.renames.emplace_back(tmp, targets[i]);
   }
+  step("written");
+  // The files of an older output of the same name (the caller's test), found under the lock.
+  if (options.remove_also) {
+    for (const fs::path& d : folders) {
+      std::error_code ec;
+      for (fs::directory_iterator it(d, ec), end; !ec && it != end; it.increment(ec)) {
+        const fs::path p = d / it->path().filename();
+        const std::string name = p.filename().string();
+        if (is_journal_name(name) || !set_file_id(name).empty()) continue;
+        if (std::find(targets.begin(), targets.end(), p) != targets.end()) continue;
+        std::error_code st;
+        if (!fs::is_regular_file(fs::symlink_status(p, st))) continue;
+        if (options.remove_also(p)) j.removals.push_back(p);
+      }
+    }
+  }
+  // Hard links of the targets that exist, so that a failed rename can put them back.
+  std::vector<fs::path> backups(files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    std::error_code ec;
+    if (!fs::is_regular_file(fs::symlink_status(targets[i], ec))) continue;
+    const fs::path b = targets[i].parent_path() / ("." + targets[i].filename().string() + set_marker + j.id + ".old");
+    fs::create_hard_link(targets[i], b, ec);
+    if (!ec) {
+      backups[i] = b;
+      j.backups.push_back(b);
+    }
+  }
+  const bool journaled = files.size() > 1 || !j.removals.empty();
+  std::vector<fs::path> journals;  // the copies written, the commit record last
+  if (journaled) {
+    const std::string text = journal_text(j);
+    const std::vector<char> bytes(text.begin(), text.end());
+    for (std::size_t k = folders.size(); k-- > 0;) {  // the other folders' copies first, the primary's last
+      const fs::path jp = journal_path(folders[k], j.id);
+      if (auto ok = write_new_file(jp, files.front().first, bytes, who); !ok) {
+        remove_paths(journals);
+        remove_paths(temps);
+        for (const fs::path& b : backups) ::unlink(b.c_str());
+        return ok.error();
+      }
+      sync_folder(folders[k]);
+      journals.push_back(jp);
+      if (k == 1) step("prepared");
+    }
+  }
+  step("committed");
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    std::error_code ec;
+    fs::rename(temps[i], targets[i], ec);
+    if (!ec) {
+      if (i == 0) step("renamed-first");
+      continue;
+    }
+    // Undo: the targets renamed so far go back to what they were (or away, where there was none).
+    for (std::size_t k = 0; k < i; ++k) {
+      std::error_code undo;
+      if (!backups[k].empty()) {
+        fs::rename(backups[k], targets[k], undo);
+      } else {
+        fs::remove(targets[k], undo);
+      }
+    }
+    remove_paths(std::vector<fs::path>(temps.begin() + static_cast<std::ptrdiff_t>(i), temps.end()));
+    remove_paths(backups);
+    for (auto it = journals.rbegin(); it != journals.rend(); ++it) ::unlink(it->c_str());  // the commit record first
+    for (const fs::path& d : folders) sync_folder(d);
+    return file_error(who, files[i].first, "cannot replace the file: " + ec.message());
+  }
+  step("renamed");
+  for (const fs::path& r : j.removals) {
+    std::error_code ec;
+    fs::remove(r, ec);
+  }
+  remove_paths(backups);
+  if (journaled) {
+    for (const fs::path& d : folders) sync_folder(d);  // the renames are on disk before the journal goes
+    for (const fs::path& jp : journals) ::unlink(jp.c_str());  // the other folders' copies first, the commit record last
+  }
+  for (const fs::path& d : folders) sync_folder(d);
+  step("done");
   return true;
+}
+
+// Writes one file through the output-set mechanism above.
+Result<bool> write_atomically(const fs::path& target, const std::vector<char>& bytes, const char* who) {
+  return publish(FileRefs{{target, &bytes}}, {}, who);
 }
 
 }  // namespace
@@ -996,64 +1370,18 @@ Result<bool> write_file_atomically(const fs::path& path, const std::vector<char>
   }
 }
 
-Result<bool> write_files_atomically(const std::vector<std::pair<fs::path, std::vector<char>>>& files) {
-  const SignalHold hold;
-  std::vector<fs::path> temps;
-  auto remove_all = [](const std::vector<fs::path>& paths) {
-    for (const fs::path& p : paths) {
-      if (!p.empty()) {
-        ::unlink(p.c_str());
-      }
-    }
-  };
-  for (const auto& [target, bytes] : files) {
-    auto tmp = write_temporary(target, bytes, "write_files_atomically");
-    if (!tmp) {
-      remove_all(temps);
-      return tmp.error();
-    }
-    temps.push_back(*tmp);
+Result<bool> write_files_atomically(const std::vector<std::pair<fs::path, std::vector<char>>>& files,
+                                   const PublishOptions& options) {
+  try {
+    FileRefs refs;
+    for (const auto& f : files) refs.emplace_back(f.first, &f.second);
+    return publish(refs, options, "write_files_atomically");
+  } catch (const std::exception& e) {  // std::bad_alloc from the path strings, at worst
+    return file_error("write_files_atomically", files.empty() ? fs::path() : files.front().first, e.what());
   }
-  // Every file is complete beside its target. Existing targets get a second name (a hard link, named as a
-  // temporary so a kill -9 leaves nothing stale) so that a failed rename can put them back.
-  std::vector<fs::path> backups(files.size());
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    const fs::path& target = files[i].first;
-    std::error_code ec;
-    if (fs::is_regular_file(fs::symlink_status(target, ec))) {
-      const fs::path backup = target.parent_path() / ("." + target.filename().string() + ".tmp-" +
-                                                      std::to_string(::getpid()) + "-backup-" + std::to_string(i));
-      ::unlink(backup.c_str());
-      fs::create_hard_link(target, backup, ec);
-      if (!ec) {
-        backups[i] = backup;
-      }
-    }
-  }
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    std::error_code ec;
-    fs::rename(temps[i], files[i].first, ec);
-    if (!ec) {
-      continue;
-    }
-    // Undo: the files renamed so far go back to what they were (or away, where there was none).
-    for (std::size_t k = 0; k < i; ++k) {
-      std::error_code undo_ec;
-      if (!backups[k].empty()) {
-        fs::rename(backups[k], files[k].first, undo_ec);
-      } else {
-        fs::remove(files[k].first, undo_ec);
-      }
-    }
-    remove_all(std::vector<fs::path>(temps.begin() + static_cast<std::ptrdiff_t>(i), temps.end()));
-    remove_all(std::vector<fs::path>(backups.begin() + static_cast<std::ptrdiff_t>(i), backups.end()));
-    return file_error("write_files_atomically", files[i].first, "cannot replace the file: " + ec.message());
-  }
-  remove_all(backups);
-  return true;
 }
 
-Result<bool> write_image(const Image& image, const fs::path& path, const WriteOptions& options) {
+Result<std::vector<char>> encode_image(const Image& image, const fs::path& path, const WriteOptions& options) {
   const Format format = format_of(path);
   if (format == Format::unknown) {
     return write_error(path, unknown_extension_reason());
@@ -1066,35 +1394,35 @@ Result<bool> write_image(const Image& image, const fs::path& path, const WriteOp
     return write_error(path, "exposure must be finite");
   }
   try {
-    std::vector<char> bytes;
     switch (format) {
       case Format::exr:
-        bytes = encode_exr(image, options);
-        break;
-      case Format::hdr: {
-        auto encoded = encode_hdr(image, path);
-        if (!encoded) {
-          return encoded.error();
-        }
-        bytes = std::move(encoded.value());
-        break;
-      }
-      case Format::png: {
-        auto encoded = encode_png(image, path, options.exposure);
-        if (!encoded) {
-          return encoded.error();
-        }
-        bytes = std::move(encoded.value());
-        break;
-      }
+        return encode_exr(image, options);
+      case Format::hdr:
+        return encode_hdr(image, path);
+      case Format::png:
+        return encode_png(image, path, options.exposure);
       case Format::unknown:
         break;
     }
-    return write_atomically(path, bytes, "write_image");
+    return write_error(path, unknown_extension_reason());
   } catch (const std::exception& e) {
     return write_error(path, e.what());
   } catch (...) {
     return write_error(path, "unknown error while encoding");
+  }
+}
+
+Result<bool> write_image(const Image& image, const fs::path& path, const WriteOptions& options) {
+  auto bytes = encode_image(image, path, options);
+  if (!bytes) {
+    return bytes.error();
+  }
+  try {
+    return write_atomically(path, *bytes, "write_image");
+  } catch (const std::exception& e) {
+    return write_error(path, e.what());
+  } catch (...) {
+    return write_error(path, "unknown error while writing");
   }
 }
 

@@ -29,6 +29,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -117,12 +118,32 @@ struct WriteOptions {
 // existing `path` is untouched, and the Error names `path`. write_image uses it; so can any other writer.
 Result<bool> write_file_atomically(const std::filesystem::path& path, const std::vector<char>& bytes);
 
-// Writes several files as one step: every file to its temporary first (signals held throughout), then the
-// renames. A failure before the renames leaves every target untouched; a failed rename puts the targets
-// renamed before it back (an existing one from a hard link made beforehand, a new one removed). No
-// temporary is left either way. The Error names the file that failed.
+// Options of write_files_atomically.
+struct PublishOptions {
+  // Called under the folder locks with every other regular file in the targets' folders (not a target, not a
+  // temporary): true removes it in the same step as the renames. For the files of an older output of the same
+  // name that the new one does not have (`bake specular`'s deeper levels of a longer chain).
+  std::function<bool(const std::filesystem::path&)> remove_also;
+  // Tests only: called at each step ("locked", "written", "prepared" (multi-folder sets), "committed",
+  // "renamed-first", "renamed", "done"), so that a test can end the process there as a kill -9 would.
+  std::function<void(const char* step)> after_step;
+};
+
+// Writes several files as one output set, the one mechanism behind every file shadelab writes (docs/design.md,
+// "Output sets"): the targets' folders are locked (flock on each folder, in the order of their real paths;
+// concurrent writers are serialised), what a dead run left there is settled (a committed set completed, stale
+// temporaries removed), every file is written to its temporary beside its target (".NAME.set-ID.tmp", fsync'd),
+// a journal ".shadelab-set-ID.journal" is written (the commit point; only for more than one change), then the
+// renames and removals, then the journal goes. A failure before the commit leaves every target untouched; a
+// failed rename puts the targets renamed before it back; a kill -9 after the commit is completed by the next
+// writer into that folder. No temporary is left. The Error names the file that failed.
 Result<bool> write_files_atomically(
-    const std::vector<std::pair<std::filesystem::path, std::vector<char>>>& files);
+    const std::vector<std::pair<std::filesystem::path, std::vector<char>>>& files, const PublishOptions& options = {});
+
+// The bytes write_image would write to `path` (format by extension), for a caller that writes several files
+// as one set (write_files_atomically).
+Result<std::vector<char>> encode_image(const Image& image, const std::filesystem::path& path,
+                                       const WriteOptions& options = {});
 
 // Walks an OpenEXR file's header(s) before OpenEXR reads them: the magic number, the version field, and
 // every attribute (name, type, a 4-byte size, the value), checking that each name is terminated within the

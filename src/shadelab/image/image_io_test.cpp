@@ -4,6 +4,7 @@
 #include "shadelab/image/image_io.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -20,6 +21,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <sstream>
 #include <thread>
 #include <string>
 #include <vector>
@@ -1097,6 +1099,8 @@ TEST_F(ImageIo, PngPaletteIndexPastThePaletteIsAnError) {
 
 // issue 16, 4: kill -9 during a write left ".x.exr.tmp-*" behind. The next write beside it removes
 // temporaries of our naming whose process is gone, and leaves those of live processes and other files alone.
+// Issue 40, 7: those of other targets too (".y.exr.tmp-DEADPID-..."): no later run wrote y.exr, so before
+// output sets nothing ever removed them; every write now settles its whole folder under the folder's lock.
 TEST_F(ImageIo, StaleTemporariesOfDeadProcessesAreRemoved) {
   // A pid that is not running: the largest pid Linux hands out is 4194304.
   const std::string dead = ".x.exr.tmp-4194999-0-1";
@@ -1108,7 +1112,7 @@ TEST_F(ImageIo, StaleTemporariesOfDeadProcessesAreRemoved) {
   EXPECT_FALSE(fs::exists(path(dead)));
   EXPECT_TRUE(fs::exists(path(live)));
   EXPECT_TRUE(fs::exists(path(other)));
-  EXPECT_TRUE(fs::exists(path(other_file)));
+  EXPECT_FALSE(fs::exists(path(other_file)));
 }
 
 // issue 16, 4: Ctrl-C while the output was being written lost the image and left ".x.tmp-*" behind. A
@@ -1128,7 +1132,7 @@ TEST_F(ImageIo, SigintDuringAWriteEndsTheProcessOnlyAfterTheRename) {
   bool seen = false;
   for (int i = 0; i < 20000 && !seen; ++i) {
     for (const auto& entry : fs::directory_iterator(m_dir)) {
-      seen = seen || entry.path().filename().string().rfind(".big.bin.tmp-", 0) == 0;
+      seen = seen || entry.path().filename().string().rfind(".big.bin.set-", 0) == 0;
     }
     if (!seen) std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
@@ -1164,10 +1168,172 @@ TEST_F(ImageIo, WriteFilesAtomicallyIsAllOrNothing) {
   EXPECT_EQ(read_all(path("a.bin")), "old a");
   EXPECT_EQ(listing(), (std::vector<std::string>{"a.bin", "c.bin"}));
   fs::remove(path("c.bin"));
+  // Issue 40: the folder in the way is now refused before anything is written; a rename that fails after the
+  // commit (the folder appears then) still puts the renamed targets back and removes the journal.
+  PublishOptions late;
+  late.after_step = [&](const char* step) {
+    if (std::string(step) == "committed") fs::create_directories(path("c.bin"));
+  };
+  const Result<bool> late_fail = write_files_atomically(
+      {{path("a.bin"), bytes("new a")}, {path("b.bin"), bytes("new b")}, {path("c.bin"), bytes("new c")}}, late);
+  ASSERT_FALSE(late_fail.has_value());
+  EXPECT_NE(late_fail.error().message.find("c.bin"), std::string::npos) << late_fail.error().message;
+  EXPECT_EQ(read_all(path("a.bin")), "old a");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"a.bin", "c.bin"}));
+  fs::remove(path("c.bin"));
   ASSERT_TRUE(write_files_atomically({{path("a.bin"), bytes("new a")}, {path("b.bin"), bytes("new b")}}).has_value());
   EXPECT_EQ(read_all(path("a.bin")), "new a");
   EXPECT_EQ(read_all(path("b.bin")), "new b");
   EXPECT_EQ(listing(), (std::vector<std::string>{"a.bin", "b.bin"}));
+}
+
+// ------------------------------------------------------------------------------------- output sets (issue 40)
+
+std::string file_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<char> text_bytes(const std::string& s) { return std::vector<char>(s.begin(), s.end()); }
+
+// Runs write_files_atomically(files) in a child process that ends itself with SIGKILL at `step`, as a kill -9
+// there would; returns true when the child died there.
+bool killed_at(const std::vector<std::pair<fs::path, std::vector<char>>>& files, const std::string& step,
+               const PublishOptions& base = {}) {
+  const pid_t child = ::fork();
+  if (child == 0) {
+    PublishOptions o = base;
+    o.after_step = [&step](const char* s) {
+      if (step == s) ::kill(::getpid(), SIGKILL);
+    };
+    (void)write_files_atomically(files, o);
+    ::_exit(0);
+  }
+  int status = 0;
+  if (::waitpid(child, &status, 0) != child) return false;
+  return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+}
+
+// Finding 7: a kill -9 between the renames of a set (merge's EXR and PNG) left a new EXR beside an old PNG.
+// After the commit point the set is completed by the next writer into the folder; the temporaries go.
+TEST_F(ImageIo, OutputSetKilledAfterItsCommitIsCompletedByTheNextWriter) {
+  write_file(path("x.exr"), {'o', 'l', 'd'});
+  write_file(path("x.png"), {'o', 'l', 'd'});
+  ASSERT_TRUE(killed_at({{path("x.exr"), text_bytes("new exr")}, {path("x.png"), text_bytes("new png")}}, "renamed-first"));
+  EXPECT_EQ(file_text(path("x.exr")), "new exr");  // the kill -9 came between the renames
+  EXPECT_EQ(file_text(path("x.png")), "old");
+  EXPECT_GT(listing().size(), 3u) << "the journal and the temporaries stay for the next writer";
+  ASSERT_TRUE(write_file_atomically(path("other.txt"), text_bytes("x")));  // any write into the folder
+  EXPECT_EQ(file_text(path("x.exr")), "new exr");
+  EXPECT_EQ(file_text(path("x.png")), "new png");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"other.txt", "x.exr", "x.png"}));
+}
+
+// Before the commit point a kill -9 leaves only temporaries: the old set stands and the next writer removes them.
+TEST_F(ImageIo, OutputSetKilledBeforeItsCommitLeavesTheOldSet) {
+  write_file(path("x.exr"), {'o', 'l', 'd'});
+  write_file(path("x.png"), {'o', 'l', 'd'});
+  ASSERT_TRUE(killed_at({{path("x.exr"), text_bytes("new exr")}, {path("x.png"), text_bytes("new png")}}, "written"));
+  EXPECT_EQ(file_text(path("x.exr")), "old");
+  EXPECT_EQ(file_text(path("x.png")), "old");
+  ASSERT_TRUE(write_file_atomically(path("other.txt"), text_bytes("x")));
+  EXPECT_EQ(file_text(path("x.exr")), "old");
+  EXPECT_EQ(file_text(path("x.png")), "old");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"other.txt", "x.exr", "x.png"}));
+}
+
+// A set over two folders: the copy of the journal in the second folder is written before the commit record in
+// the first; killed between, the set never happened, whichever folder is written next.
+TEST_F(ImageIo, OutputSetOverTwoFoldersIsAllOrNothing) {
+  fs::create_directories(path("a"));
+  fs::create_directories(path("b"));
+  write_file(path("a/x.exr"), {'o', 'l', 'd'});
+  write_file(path("b/x.png"), {'o', 'l', 'd'});
+  const std::vector<std::pair<fs::path, std::vector<char>>> set = {{path("a/x.exr"), text_bytes("new exr")},
+                                                                     {path("b/x.png"), text_bytes("new png")}};
+  ASSERT_TRUE(killed_at(set, "prepared"));
+  ASSERT_TRUE(write_file_atomically(path("b/other.txt"), text_bytes("x")));  // the second folder settles first
+  ASSERT_TRUE(write_file_atomically(path("a/other.txt"), text_bytes("x")));
+  EXPECT_EQ(file_text(path("a/x.exr")), "old");
+  EXPECT_EQ(file_text(path("b/x.png")), "old");
+  // Killed after the commit: the first folder's next writer completes both folders.
+  ASSERT_TRUE(killed_at(set, "renamed-first"));
+  EXPECT_EQ(file_text(path("b/x.png")), "old");
+  ASSERT_TRUE(write_file_atomically(path("a/other.txt"), text_bytes("y")));
+  EXPECT_EQ(file_text(path("a/x.exr")), "new exr");
+  EXPECT_EQ(file_text(path("b/x.png")), "new png");
+  for (const char* d : {"a", "b"}) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(path(d))) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"other.txt", d == std::string("a") ? "x.exr" : "x.png"})) << d;
+  }
+}
+
+// Finding 5: a full disk part-way through a set (here a file size limit: the third file's write fails with
+// EFBIG) left the files written before it. Now every target is untouched and no temporary is left.
+TEST_F(ImageIo, WriteFilesAtomicallyFailingPartWayChangesNothing) {
+  for (const char* n : {"c.ktx2", "c_m0.exr", "c_m1.exr"}) write_file(path(n), {'o', 'l', 'd'});
+  const pid_t child = ::fork();
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{4096, 4096};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    const Result<bool> r = write_files_atomically({{path("c.ktx2"), text_bytes("new")},
+                                                   {path("c_m0.exr"), text_bytes("new")},
+                                                   {path("c_m1.exr"), std::vector<char>(8192, 'x')}});
+    const bool named = !r && r.error().message.find("c_m1.exr") != std::string::npos;
+    ::_exit(named ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the write did not fail naming c_m1.exr";
+  for (const char* n : {"c.ktx2", "c_m0.exr", "c_m1.exr"}) EXPECT_EQ(file_text(path(n)), "old") << n;
+  EXPECT_EQ(listing(), (std::vector<std::string>{"c.ktx2", "c_m0.exr", "c_m1.exr"}));
+}
+
+// Finding 5: the files of an older output of the same name go in the same step (remove_also), and a kill -9
+// after the commit removes them too once settled.
+TEST_F(ImageIo, OutputSetRemovesTheOlderOutputsFiles) {
+  for (const char* n : {"c_m0.exr", "c_m1.exr", "c_m2.exr", "keep.exr"}) write_file(path(n), {1});
+  PublishOptions o;
+  o.remove_also = [](const fs::path& p) { return p.filename().string().rfind("c_m", 0) == 0; };
+  ASSERT_TRUE(killed_at({{path("c.ktx2"), text_bytes("c")}, {path("c_m0.exr"), text_bytes("m0")}}, "renamed", o));
+  EXPECT_TRUE(fs::exists(path("c_m2.exr")));
+  ASSERT_TRUE(write_file_atomically(path("other.txt"), text_bytes("x")));
+  EXPECT_EQ(listing(), (std::vector<std::string>{"c.ktx2", "c_m0.exr", "keep.exr", "other.txt"}));
+  EXPECT_EQ(file_text(path("c_m0.exr")), "m0");
+  write_file(path("c_m1.exr"), {1});
+  ASSERT_TRUE(write_files_atomically({{path("c.ktx2"), text_bytes("c2")}, {path("c_m0.exr"), text_bytes("m0b")}}, o));
+  EXPECT_EQ(listing(), (std::vector<std::string>{"c.ktx2", "c_m0.exr", "keep.exr", "other.txt"}));
+}
+
+// Finding 7: concurrent writers of one set are serialised (a lock on the folder): every round ends with a
+// pair from one writer, never a mix.
+TEST_F(ImageIo, ConcurrentWritersOfOneSetNeverMix) {
+  for (int round = 0; round < 8; ++round) {
+    std::vector<pid_t> children;
+    for (int w = 0; w < 2; ++w) {
+      const pid_t child = ::fork();
+      if (child == 0) {
+        const std::string tag = std::to_string(w);
+        for (int k = 0; k < 10; ++k) {
+          if (!write_files_atomically({{path("x.exr"), text_bytes(tag)}, {path("x.png"), text_bytes(tag)}})) ::_exit(1);
+        }
+        ::_exit(0);
+      }
+      children.push_back(child);
+    }
+    for (const pid_t c : children) {
+      int status = 0;
+      ASSERT_EQ(::waitpid(c, &status, 0), c);
+      ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    }
+    ASSERT_EQ(file_text(path("x.exr")), file_text(path("x.png"))) << "round " << round;
+    ASSERT_EQ(listing(), (std::vector<std::string>{"x.exr", "x.png"}));
+  }
 }
 
 }  // namespace

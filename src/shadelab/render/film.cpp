@@ -21,11 +21,16 @@ Image tonemap(const Image& hdr, double exposure_stops, ToneCurve curve) {
 }
 
 Result<std::vector<std::filesystem::path>> write_film(const RenderResult& result, const FilmOutputs& o) {
+  // Every output is encoded first, then all are published as one output set (write_files_atomically): the
+  // EXR, the PNG and the AOVs of one render are replaced together or not at all (issue 40, finding 7).
   std::vector<std::filesystem::path> written;
+  std::vector<std::pair<std::filesystem::path, std::vector<char>>> files;
   auto put = [&](const Image& img, const std::filesystem::path& path) -> Result<bool> {
-    auto r = write_image(img, path);
-    if (r) written.push_back(path);
-    return r;
+    auto bytes = encode_image(img, path);
+    if (!bytes) return bytes.error();
+    files.emplace_back(path, std::move(bytes).value());
+    written.push_back(path);
+    return true;
   };
   if (auto r = put(result.beauty, o.exr); !r) return r.error();
   if (!o.png.empty()) {
@@ -38,6 +43,7 @@ Result<std::vector<std::filesystem::path>> write_film(const RenderResult& result
       if (auto r = put(*image, base.string() + suffix); !r) return r.error();
     }
   }
+  if (auto r = write_files_atomically(files); !r) return r.error();
   return written;
 }
 

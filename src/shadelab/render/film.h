@@ -28,7 +28,8 @@ struct FilmOutputs {
   bool aovs = false;                   // also <exr stem>.albedo.exr, .normal.exr, .depth.exr
 };
 
-// Writes every output atomically; returns the paths written.
+// Writes every output as one output set (write_files_atomically: together or not at all, concurrent writers
+// serialised); returns the paths written.
 Result<std::vector<std::filesystem::path>> write_film(const RenderResult& result, const FilmOutputs& outputs);
 
 }  // namespace shadelab
