@@ -89,6 +89,8 @@ TEST(CliIblError, BadInputIsOneLineAndWritesNothing) {
   expect_usage_error("ibl-error " + in + " --roughness 0.5,nan" + out, "--roughness");
   expect_usage_error("ibl-error " + in + " --bins 0" + out, "--bins");
   expect_usage_error("ibl-error " + in + " --correction mirror" + out, "--correction: 'mirror' is not lobes, dominant or filtered");
+  // The one name of the concept, --split-sum-lookup (render's flag), is the same option.
+  expect_usage_error("ibl-error " + in + " --split-sum-lookup mirror" + out, "'mirror' is not lobes, dominant or filtered");
   expect_usage_error("ibl-error " + in + " --correction filtered --taps 0" + out, "--taps");
   expect_usage_error("ibl-error " + in + " --correction filtered --taps 1025" + out, "--taps");
   expect_usage_error("ibl-error " + in + " --specular-size 48" + out, "--specular-size: 48 is not a power of two");

@@ -52,7 +52,7 @@ void run_ibl_error(const IblErrorCliOptions& o) {
                                  o.specular_size));
   }
   if (o.correction != "lobes" && o.correction != "dominant" && o.correction != "filtered") {
-    throw UsageError("--correction: '" + o.correction + "' is not lobes, dominant or filtered");
+    throw UsageError("--correction: '" + o.correction + "' is not lobes, dominant or filtered (--split-sum-lookup)");
   }
   check_range("--taps", true, o.taps, 1, split_sum_taps_max);
   if (o.roughness.empty()) throw UsageError("--roughness: give at least one value");
@@ -89,9 +89,9 @@ void run_ibl_error(const IblErrorCliOptions& o) {
   io.seed = seed;
   io.threads = o.threads;
   io.game.specular_size = o.specular_size;
-  io.correction = o.correction == "dominant"   ? GameSplitSumDirection::dominant
-                  : o.correction == "filtered" ? GameSplitSumDirection::filtered
-                                               : GameSplitSumDirection::lobes;
+  io.correction = o.correction == "dominant"   ? GameSplitSumLookup::dominant
+                  : o.correction == "filtered" ? GameSplitSumLookup::filtered
+                                               : GameSplitSumLookup::lobes;
   io.game.split_sum_taps = o.taps;
   const ParamAssignments params = parse_assignments(o.params);
   for (const auto& [key, value] : params) {  // the map's own rules first, then the model's (a test build)
@@ -153,7 +153,8 @@ void add_ibl_error_command(CLI::App& app, Command& command) {
   sub->add_option("--spp", o->spp, "path-traced samples per pixel of the reference")->capture_default_str();
   sub->add_option("--seed", o->seed, "seed of the reference renders")->capture_default_str();
   sub->add_option("--threads", o->threads, "0: all cores")->capture_default_str();
-  sub->add_option("--correction", o->correction, "the corrected map's lookup: lobes (each part at its lobe's first "
+  sub->add_option("--split-sum-lookup,--correction", o->correction, "the corrected map's split-sum lookup (--correction: "
+                                                "its older name): lobes (each part at its lobe's first "
                                                 "moments), dominant (normalize(mix(R, n, alpha^2))) or filtered (each part the mean "
                                                 "of --taps reads over its own lobe)")
       ->capture_default_str();

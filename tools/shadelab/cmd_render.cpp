@@ -77,7 +77,7 @@ struct RenderCliOptions {
   int specular_size = 64;  // game mode: face size of the prefiltered cube's level 0
   bool env_size_given = false, specular_size_given = false;
   std::string ggx_specular = "split-sum";  // game mode: GameOptions::ggx_specular
-  std::string split_sum_lookup = "lobes";  // game mode: GameOptions::split_sum_direction
+  std::string split_sum_lookup = "lobes";  // game mode: GameOptions::split_sum_lookup
   bool ggx_specular_given = false, split_sum_lookup_given = false;
   int split_sum_taps = 64;  // game mode, --split-sum-lookup filtered: GameOptions::split_sum_taps
   bool split_sum_taps_given = false;
@@ -240,15 +240,15 @@ void run_render(const RenderCliOptions& o) {
   if (o.ggx_specular == "phong") go.ggx_specular = GameGgxSpecular::phong;
   else if (o.ggx_specular == "split-sum") go.ggx_specular = GameGgxSpecular::split_sum;
   else throw UsageError("--ggx-specular: '" + o.ggx_specular + "' is not one of phong | split-sum");
-  if (o.split_sum_lookup == "lobes") go.split_sum_direction = GameSplitSumDirection::lobes;
-  else if (o.split_sum_lookup == "dominant") go.split_sum_direction = GameSplitSumDirection::dominant;
-  else if (o.split_sum_lookup == "mirror") go.split_sum_direction = GameSplitSumDirection::mirror;
-  else if (o.split_sum_lookup == "filtered") go.split_sum_direction = GameSplitSumDirection::filtered;
+  if (o.split_sum_lookup == "lobes") go.split_sum_lookup = GameSplitSumLookup::lobes;
+  else if (o.split_sum_lookup == "dominant") go.split_sum_lookup = GameSplitSumLookup::dominant;
+  else if (o.split_sum_lookup == "mirror") go.split_sum_lookup = GameSplitSumLookup::mirror;
+  else if (o.split_sum_lookup == "filtered") go.split_sum_lookup = GameSplitSumLookup::filtered;
   else throw UsageError("--split-sum-lookup: '" + o.split_sum_lookup + "' is not one of lobes | dominant | mirror | filtered");
   if (o.split_sum_lookup_given && go.ggx_specular != GameGgxSpecular::split_sum) {
     throw UsageError("--split-sum-lookup applies to --ggx-specular split-sum");
   }
-  if (o.split_sum_taps_given && go.split_sum_direction != GameSplitSumDirection::filtered) {
+  if (o.split_sum_taps_given && go.split_sum_lookup != GameSplitSumLookup::filtered) {
     throw UsageError("--split-sum-taps applies to --split-sum-lookup filtered");
   }
   if (o.split_sum_taps < 1 || o.split_sum_taps > split_sum_taps_max) {

@@ -113,12 +113,12 @@ std::string html_page(const IblErrorMap& map, const std::string& input, double s
   summary(map.split_sum_summary);
   h << fmt::format("<p><img src=\"split_sum_error.png\" alt=\"|error| per cell, white at {:.3g}\"> |error| per cell "
                    "(rows: roughness, top the smoothest; columns: N.V from 0), white at {:.3g}.</p>\n", scale, scale);
-  if (map.correction == GameSplitSumDirection::lobes) {
+  if (map.correction == GameSplitSumLookup::lobes) {
     h << "<h2>Split sum read per part at its lobe's first moments</h2>\n"
          "<p>The same chain and table (the same storage), read twice: f0 A along the mean direction of the A lobe "
          "and at the chain roughness of the same spread, f90 B likewise for the B (Fresnel) lobe "
          "(envmap/specular/split_sum_lobes.h, kernels/game_ambient.sl game_split_sum_lobe_direction).</p>\n";
-  } else if (map.correction == GameSplitSumDirection::filtered) {
+  } else if (map.correction == GameSplitSumLookup::filtered) {
     h << fmt::format("<h2>Split sum with each part filtered over its own lobe ({} taps)</h2>\n"
                      "<p>The same chain and table (the same storage), read at {} taps drawn from the visible normals "
                      "of the true lobe, each with the footprint of its share of solid angle (filtered importance "
@@ -127,7 +127,7 @@ std::string html_page(const IblErrorMap& map, const std::string& input, double s
   } else {
     h << "<h2>Split sum read along the dominant direction normalize(mix(R, n, &alpha;<sup>2</sup>))</h2>\n"
          "<p>The same chain and table (the same storage), looked up toward the normal as the lobe leans at oblique "
-         "view (kernels/game_ambient.sl game_split_sum_direction).</p>\n";
+         "view (kernels/game_ambient.sl game_split_sum_lookup).</p>\n";
   }
   table(map.corrected, "roughness");
   summary(map.corrected_summary);

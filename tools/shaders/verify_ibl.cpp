@@ -234,7 +234,7 @@ Result<VerifyReport> verify_ibl(const VerifyOptions& o, const ShaderExport& ex, 
   go.punctual = false;
   go.shadows = false;
   go.ggx_specular = GameGgxSpecular::split_sum;
-  go.split_sum_direction = GameSplitSumDirection::lobes;
+  go.split_sum_lookup = GameSplitSumLookup::lobes;
   go.dfg_size = dfg->size;
   auto image = render_game(scene, go, env);
   if (!image) return image.error();

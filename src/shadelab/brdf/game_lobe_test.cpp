@@ -75,7 +75,7 @@ TEST(GameKernels, SplitSumDirectionLeansFromTheMirrorToTheNormal) {
     const double theta_r = std::acos(std::clamp(dot(r, n), -1.0, 1.0));
     double last = theta_r + 1e-12;
     for (const double alpha : {0.0, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0}) {
-      const Vec3 d = kernel::game_split_sum_direction(n, r, alpha);
+      const Vec3 d = kernel::game_split_sum_lookup(n, r, alpha);
       EXPECT_NEAR(length(d), 1.0, 1e-12);
       EXPECT_NEAR(dot(cross(r, n), d), 0.0, 1e-12);  // in the plane of R and n
       const double t = alpha * alpha;
@@ -84,8 +84,8 @@ TEST(GameKernels, SplitSumDirectionLeansFromTheMirrorToTheNormal) {
       EXPECT_LE(std::acos(std::clamp(dot(d, n), -1.0, 1.0)), last);  // toward n as alpha grows
       last = std::acos(std::clamp(dot(d, n), -1.0, 1.0)) + 1e-12;
     }
-    const Vec3 mirror = kernel::game_split_sum_direction(n, r, 0.0);
-    const Vec3 normal = kernel::game_split_sum_direction(n, r, 1.0);
+    const Vec3 mirror = kernel::game_split_sum_lookup(n, r, 0.0);
+    const Vec3 normal = kernel::game_split_sum_lookup(n, r, 1.0);
     EXPECT_NEAR(length(mirror - r), 0.0, 1e-12);
     EXPECT_NEAR(length(normal - n), 0.0, 1e-12);
   }

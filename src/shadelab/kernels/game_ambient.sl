@@ -10,7 +10,7 @@
 //     4-8; Filament's documentation, "Image based lights"): L += prefiltered_ggx(R, r) (f0 A + f90 B), the GGX
 //     chain (envmap/prefilter_ggx.h) read at the perceptual roughness r and A, B the DFG table's scale and
 //     bias at (N.V, r) (envmap/dfg.h); the chain read along R as published, or along the dominant direction
-//     normalize(mix(R, n, alpha^2)), alpha = r^2 (game_split_sum_direction below).
+//     normalize(mix(R, n, alpha^2)), alpha = r^2 (game_split_sum_lookup below).
 
 const int GAME_ALBEDO_BINS = 32;
 
@@ -48,7 +48,7 @@ inline vec3 game_reflect(vec3 wo, vec3 n) {
 // alpha = perceptual roughness^2. The chain's lobe about R is radially symmetric (n = v = R), while the rough
 // lobe at oblique view leans toward the normal: d is R for a mirror, n for alpha = 1. Measured by
 // `shadelab ibl-error` (render/ibl_error.h, docs/envmap.md) against the path tracer.
-inline vec3 game_split_sum_direction(vec3 n, vec3 r, real alpha) {
+inline vec3 game_split_sum_lookup(vec3 n, vec3 r, real alpha) {
   real t = clamp(alpha * alpha, 0.0, 1.0);
   return normalize(r * (1.0 - t) + n * t);
 }

@@ -109,9 +109,9 @@ inline SplitSumLobeReads split_sum_lobes_read(real mu, real roughness, int n) {
   return reads;
 }
 
-// The split sum's lookups (render/game_renderer.h GameSplitSumDirection; `render --split-sum-lookup`).
+// The split sum's lookups (render/game_renderer.h GameSplitSumLookup; `render --split-sum-lookup`).
 const int SPLIT_SUM_LOOKUP_MIRROR = 0;    // the chain read once along R (Karis 2013 as published)
-const int SPLIT_SUM_LOOKUP_DOMINANT = 1;  // once along normalize(mix(R, n, alpha^2)) (game_split_sum_direction)
+const int SPLIT_SUM_LOOKUP_DOMINANT = 1;  // once along normalize(mix(R, n, alpha^2)) (game_split_sum_lookup)
 const int SPLIT_SUM_LOOKUP_LOBES = 2;     // each part once along and at its lobe's first moments (the default)
 
 // The game shading equation's split-sum specular ambient at a shading point, before a model's energy terms:
@@ -129,7 +129,7 @@ inline rgb game_split_sum_ambient(vec3 n, vec3 wo, real mu, real roughness, rgb 
     return game_split_sum_specular_lobes(ggx_chain_read(da, lobes.roughness_a, levels, mapping),
                                          ggx_chain_read(db, lobes.roughness_b, levels, mapping), f0, f90, ab.a, ab.b);
   }
-  if (lookup == SPLIT_SUM_LOOKUP_DOMINANT) r = game_split_sum_direction(n, r, alpha_from_roughness(roughness));
+  if (lookup == SPLIT_SUM_LOOKUP_DOMINANT) r = game_split_sum_lookup(n, r, alpha_from_roughness(roughness));
   return game_split_sum_specular(ggx_chain_read(r, roughness, levels, mapping), f0, f90, ab.a, ab.b);
 }
 

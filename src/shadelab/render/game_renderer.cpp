@@ -114,7 +114,7 @@ class GameShader {
       }
       m_dfg = m_baked != nullptr && m_baked->dfg ? m_baked->dfg.get() : &game_dfg_table(m_options.dfg_size);
       // The lobe table's rows are computed as the pixels first read them (split_sum_lobes.h).
-      if (m_options.split_sum_direction == GameSplitSumDirection::lobes) {
+      if (m_options.split_sum_lookup == GameSplitSumLookup::lobes) {
         m_lobes = m_baked != nullptr && m_baked->lobes ? m_baked->lobes.get() : &split_sum_lobe_table();
       }
       // The chain and the DFG table as the kernels' fetches read them (kernels/game_ibl.sl), bound per pixel.
@@ -206,12 +206,12 @@ class GameShader {
     }
     if (split && m_chain_texels) {
       // The split sum of kernels/game_ambient.sl: prefiltered_ggx(d, r) (f0 A + f90 B), A and B at (N.V, r),
-      // d the mirror direction R or the dominant direction (options.split_sum_direction); the chain and the DFG
+      // d the mirror direction R or the dominant direction (options.split_sum_lookup); the chain and the DFG
       // table read by the kernels of game_ibl.sl (the text the exported shaders run).
       const kernel::IblBinding bind(m_ibl_texels);
       kernel::SplitSumMaterial m = split->material;
       m.roughness = ggx_chain_roughness(m.roughness);  // NaN reads as 0
-      if (m_options.split_sum_direction == GameSplitSumDirection::filtered) {
+      if (m_options.split_sum_lookup == GameSplitSumLookup::filtered) {
         // Each part averaged over its own lobe by taps of the same chain (envmap/split_sum_taps.h).
         const double mu = std::isfinite(wo.z) ? std::clamp(wo.z, 0.0, 1.0) : 0.0;
         const kernel::DfgScaleBias ab = kernel::dfg_read(mu, m.roughness, m_dfg->size);
@@ -222,7 +222,7 @@ class GameShader {
       } else {
         // The DFG read, the lookup (mirror, dominant or lobes), the chain reads, prefiltered (f0 A + f90 B) and
         // the model's energy terms: the kernel text game_split_sum_shade, which the exported shaders run.
-        l += Rgb(kernel::game_split_sum_shade(sf.frame.n, wo_world, m, e_over_pi, static_cast<int>(m_options.split_sum_direction),
+        l += Rgb(kernel::game_split_sum_shade(sf.frame.n, wo_world, m, e_over_pi, static_cast<int>(m_options.split_sum_lookup),
                                               m_ibl_texels.cube_count, m_chain_texels->mapping, m_ibl_texels.dfg_size,
                                               m_ibl_texels.lobe_size));
       }
@@ -277,7 +277,7 @@ class GameShader {
   const GameEnvironment* m_baked = nullptr;  // the caller's bake, or m_owned
   GameEnvironment m_owned;
   const DfgTable* m_dfg = nullptr;
-  const SplitSumLobeTable* m_lobes = nullptr;  // the lobe-matched lookup's table (split_sum_direction lobes)
+  const SplitSumLobeTable* m_lobes = nullptr;  // the lobe-matched lookup's table (split_sum_lookup lobes)
   std::optional<GgxChainTexels> m_chain_texels;  // the GGX chain's levels for the kernels' fetches
   kernel::IblTexels m_ibl_texels;                // those and the DFG table, bound per pixel
   std::vector<bool> m_split_sum;  // per material: the split-sum specular ambient

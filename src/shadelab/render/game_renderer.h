@@ -57,8 +57,10 @@ enum class GameAmbient { sh9, irradiance_map, none };
 // browser explorer's WebGL sphere still shades GGX on it: docs/renderer.md).
 enum class GameGgxSpecular { split_sum, phong };
 
-// The direction the split sum reads its GGX chain along: the mirror direction R (Karis 2013 as published), or
-// the dominant direction normalize(mix(R, n, alpha^2)) (kernels/game_ambient.sl game_split_sum_direction),
+// The split-sum lookup (the one name for the concept: C++ GameSplitSumLookup, `render --split-sum-lookup`,
+// `ibl-error --split-sum-lookup` (alias --correction), JSON split_sum_lookup, kernels/game_ibl.sl
+// SPLIT_SUM_LOOKUP_*): where and how rough the split sum reads its GGX chain. The mirror direction R (Karis 2013 as published), or
+// the dominant direction normalize(mix(R, n, alpha^2)) (kernels/game_ambient.sl game_split_sum_lookup),
 // which `shadelab ibl-error` measured to cut the split sum's mean error at N.V < 0.3 on sunrise.exr from
 // 26.6% to 15.8% (docs/envmap.md). The same storage: the same chain and DFG table.
 // `lobes` (the default since 2026-12-04): each part of the split sum (f0 A, f90 B) read once, along and at the
@@ -67,10 +69,10 @@ enum class GameGgxSpecular { split_sum, phong };
 // dielectric and for a metal (docs/envmap.md).
 // `filtered`: each part averaged over its own true lobe by split_sum_taps taps of the same chain, each read
 // with the footprint of its share of solid angle (envmap/split_sum_taps.h): the same storage, N reads.
-enum class GameSplitSumDirection { mirror, dominant, lobes, filtered };
-static_assert(static_cast<int>(GameSplitSumDirection::mirror) == kernel::SPLIT_SUM_LOOKUP_MIRROR &&
-              static_cast<int>(GameSplitSumDirection::dominant) == kernel::SPLIT_SUM_LOOKUP_DOMINANT &&
-              static_cast<int>(GameSplitSumDirection::lobes) == kernel::SPLIT_SUM_LOOKUP_LOBES);
+enum class GameSplitSumLookup { mirror, dominant, lobes, filtered };
+static_assert(static_cast<int>(GameSplitSumLookup::mirror) == kernel::SPLIT_SUM_LOOKUP_MIRROR &&
+              static_cast<int>(GameSplitSumLookup::dominant) == kernel::SPLIT_SUM_LOOKUP_DOMINANT &&
+              static_cast<int>(GameSplitSumLookup::lobes) == kernel::SPLIT_SUM_LOOKUP_LOBES);
 
 struct GameOptions {
   bool shadows = true;
@@ -93,8 +95,8 @@ struct GameOptions {
   GgxFilterMethod ggx_method = GgxFilterMethod::sum;
   int ggx_samples = 1024;
   int dfg_size = 64;          // the split sum's DFG table (dfg.h), baked once per process per size
-  GameSplitSumDirection split_sum_direction = GameSplitSumDirection::lobes;
-  int split_sum_taps = 64;  // split_sum_direction filtered: taps per pixel, in [1, 1024]
+  GameSplitSumLookup split_sum_lookup = GameSplitSumLookup::lobes;
+  int split_sum_taps = 64;  // split_sum_lookup filtered: taps per pixel, in [1, 1024]
 };
 
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options = {});

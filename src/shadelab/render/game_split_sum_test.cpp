@@ -146,7 +146,7 @@ TEST(GameSplitSum, ThePrefilteredFactorIsTheGgxConvolutionOfTheEnvironment) {
     s.settings.max_depth = 1;
     GameOptions g = split_sum_options();
     g.diffuse = GameAmbient::none;
-    g.split_sum_direction = GameSplitSumDirection::mirror;  // the chain read once along R, as published
+    g.split_sum_lookup = GameSplitSumLookup::mirror;  // the chain read once along R, as published
     const GameEnvironment baked = bake_game_environment(s, g).value();
     ASSERT_EQ(baked.specular_ggx.levels.size(), 7u);
     double map_centre = 0.0;
@@ -262,9 +262,9 @@ TEST(GameSplitSum, TheDominantDirectionChangesOnlyWhatDependsOnDirection) {
   // Under the varying sky they differ at oblique view (the rim) and agree head on (R = n there).
   GameOptions mirror = split_sum_options();
   mirror.environment_size = mirror.specular_size = 16;  // a quick bake per call
-  mirror.split_sum_direction = GameSplitSumDirection::mirror;
+  mirror.split_sum_lookup = GameSplitSumLookup::mirror;
   GameOptions dominant = mirror;
-  dominant.split_sum_direction = GameSplitSumDirection::dominant;
+  dominant.split_sum_lookup = GameSplitSumLookup::dominant;
   const Scene c = constant_sphere("ggx", {{"kd", "0"}, {"roughness", "0.7"}});
   for (const double x : offsets) {
     const Rgb a = game_radiance(c, {x, 0, 4}, {0, 0, -1}, mirror).value();

@@ -126,14 +126,14 @@ Result<Image> shortcut_image(const Scene& s, GameOptions g, const GameEnvironmen
 
 }  // namespace
 
-std::string split_sum_correction_text(GameSplitSumDirection correction) {
+std::string split_sum_correction_text(GameSplitSumLookup correction) {
   switch (correction) {
-    case GameSplitSumDirection::mirror: return "mirror: R, uncorrected";
-    case GameSplitSumDirection::dominant: return "dominant: normalize(mix(R, n, alpha^2)), alpha = roughness^2";
-    case GameSplitSumDirection::lobes:
+    case GameSplitSumLookup::mirror: return "mirror: R, uncorrected";
+    case GameSplitSumLookup::dominant: return "dominant: normalize(mix(R, n, alpha^2)), alpha = roughness^2";
+    case GameSplitSumLookup::lobes:
       return "lobes: f0 A read along and at the roughness of the A lobe's first moments, f90 B of the B lobe's "
              "(envmap/specular/split_sum_lobes.h)";
-    case GameSplitSumDirection::filtered:
+    case GameSplitSumLookup::filtered:
       return "filtered: f0 A and f90 B each the mean of its own lobe over taps of the chain, each read with its "
              "share of solid angle (envmap/specular/split_sum_taps.h)";
   }
@@ -238,7 +238,7 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
   IblErrorMap map;
   map.model = model;
   map.correction = o.correction;
-  if (o.correction == GameSplitSumDirection::filtered) map.taps = o.game.split_sum_taps;
+  if (o.correction == GameSplitSumLookup::filtered) map.taps = o.game.split_sum_taps;
   GameOptions split = o.game;
   split.ggx_specular = GameGgxSpecular::split_sum;
   split.diffuse = GameAmbient::none;
@@ -254,11 +254,11 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
     const Scene s = sphere_scene(scene, model, p, o);
     auto ref = reference_image(s);
     if (!ref) return ref.error();
-    split.split_sum_direction = GameSplitSumDirection::mirror;
+    split.split_sum_lookup = GameSplitSumLookup::mirror;
     auto game = shortcut_image(s, split, *baked);
     if (!game) return game.error();
     map.split_sum.push_back(bin_images(s, *game, *ref, o.nv_bins, r));
-    split.split_sum_direction = o.correction;
+    split.split_sum_lookup = o.correction;
     auto corrected = shortcut_image(s, split, *baked);
     if (!corrected) return corrected.error();
     map.corrected.push_back(bin_images(s, *corrected, *ref, o.nv_bins, r));

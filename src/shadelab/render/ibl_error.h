@@ -8,12 +8,12 @@
 // - the shortcut: the game renderer's split sum (render_game, GameGgxSpecular::split_sum, no diffuse
 //   ambient, no punctual light but a sky's sun, which game shading takes out of the environment and shades
 //   per pixel, unshadowed: a sphere cannot shadow itself): prefiltered_ggx(R, r) (f0 A + f90 B), docs/renderer.md, read along the
-//   mirror direction R as Karis 2013 publishes it (GameSplitSumDirection::mirror);
+//   mirror direction R as Karis 2013 publishes it (GameSplitSumLookup::mirror);
 // - the corrected shortcut: the same chain and table read as options.correction says: by default each part
 //   (f0 A, f90 B) along and at the roughness that match its true lobe's first moments
-//   (GameSplitSumDirection::lobes, envmap/specular/split_sum_lobes.h), along the dominant direction
-//   normalize(mix(R, n, alpha^2)) (GameSplitSumDirection::dominant, kernels/game_ambient.sl), or each part the
-//   mean of game.split_sum_taps reads over its own lobe (GameSplitSumDirection::filtered,
+//   (GameSplitSumLookup::lobes, envmap/specular/split_sum_lobes.h), along the dominant direction
+//   normalize(mix(R, n, alpha^2)) (GameSplitSumLookup::dominant, kernels/game_ambient.sl), or each part the
+//   mean of game.split_sum_taps reads over its own lobe (GameSplitSumLookup::filtered,
 //   envmap/specular/split_sum_taps.h); the same storage.
 // The environment is baked once (bake_game_environment) for all the game renders of a map.
 // The camera looks at the sphere from `view_direction` (default +Z, along the horizon) through a narrow
@@ -62,10 +62,10 @@ struct IblErrorOptions {
   std::uint64_t seed = 7;
   int threads = 0;  // 0: all cores
   Vec3 view_direction{0.0, 0.0, 1.0};  // from the sphere toward the camera
-  GameOptions game;  // the shortcut's options; ggx_specular, diffuse, punctual, split_sum_direction set per map
+  GameOptions game;  // the shortcut's options; ggx_specular, diffuse, punctual, split_sum_lookup set per map
   // The corrected map's lookup: the lobe-matched reads (default), the dominant direction or the filtered taps
   // (game.split_sum_taps of them).
-  GameSplitSumDirection correction = GameSplitSumDirection::lobes;
+  GameSplitSumLookup correction = GameSplitSumLookup::lobes;
 };
 
 struct IblErrorCell {
@@ -96,7 +96,7 @@ struct IblErrorMap {
   std::vector<IblErrorRow> split_sum;  // one row per roughness, read along R
   IblErrorSummary split_sum_summary;
   std::vector<IblErrorRow> corrected;  // the same rows read as `correction` says
-  GameSplitSumDirection correction = GameSplitSumDirection::lobes;
+  GameSplitSumLookup correction = GameSplitSumLookup::lobes;
   int taps = 0;  // correction filtered: options.game.split_sum_taps (0 otherwise)
   IblErrorSummary corrected_summary;
   // 1 - corrected.grazing_mean_abs / split_sum.grazing_mean_abs (0 when the latter is 0): the share of the
@@ -115,7 +115,7 @@ Result<IblErrorMap> ibl_error_map(const Scene& scene, const std::string& model, 
                                   const IblErrorOptions& options = {});
 
 // What a correction is, in one line (the JSON's corrected.direction, the page).
-std::string split_sum_correction_text(GameSplitSumDirection correction);
+std::string split_sum_correction_text(GameSplitSumLookup correction);
 
 // Flags the cells of rows (one map) that have no signal (header); returns how many cells have signal.
 int mark_no_signal_cells(std::vector<IblErrorRow>& rows);

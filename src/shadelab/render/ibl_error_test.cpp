@@ -229,7 +229,7 @@ TEST(IblError, SunriseMeasured) {
 // 0.125-0.25 holds about 1000 pixels; at 64 every bin below 0.3 is inside the rim margin). Two rough rows,
 // where the split sum's error at grazing is largest (docs/envmap.md), at 32 spp: the map of `name` with the
 // given correction (nullopt, with a failure, when the map cannot be read or rendered: blender-data missing).
-std::optional<IblErrorMap> grazing_map(const char* name, GameSplitSumDirection correction) {
+std::optional<IblErrorMap> grazing_map(const char* name, GameSplitSumLookup correction) {
   const std::filesystem::path path = std::filesystem::path(SHADELAB_BLENDER_WORLDS) / name;
   auto image = read_image(path);
   EXPECT_TRUE(image) << path << " cannot be read (scripts/setup.sh installs blender-data)";
@@ -256,7 +256,7 @@ std::optional<IblErrorMap> grazing_map(const char* name, GameSplitSumDirection c
 // forest (studio, where it does not, is in docs/envmap.md).
 TEST(IblError, TheDominantDirectionCutsTheGrazingError) {
   for (const char* name : {"sunrise.exr", "forest.exr"}) {
-    const auto map = grazing_map(name, GameSplitSumDirection::dominant);
+    const auto map = grazing_map(name, GameSplitSumLookup::dominant);
     ASSERT_TRUE(map.has_value());
     EXPECT_GE(map->grazing_reduction, 0.25) << name;
   }
@@ -266,9 +266,9 @@ TEST(IblError, TheDominantDirectionCutsTheGrazingError) {
 // error worse (-84% on the full map, docs/envmap.md), and forest: the grazing error of the two rows cut by at
 // least a quarter, and the whole map's mean error below the uncorrected one.
 TEST(IblError, TheLobeReadsCutTheGrazingError) {
-  ASSERT_EQ(IblErrorOptions{}.correction, GameSplitSumDirection::lobes);
+  ASSERT_EQ(IblErrorOptions{}.correction, GameSplitSumLookup::lobes);
   for (const char* name : {"courtyard.exr", "forest.exr"}) {
-    const auto map = grazing_map(name, GameSplitSumDirection::lobes);
+    const auto map = grazing_map(name, GameSplitSumLookup::lobes);
     ASSERT_TRUE(map.has_value());
     EXPECT_GE(map->grazing_reduction, 0.25) << name;
     EXPECT_LT(map->corrected_summary.mean_abs, map->split_sum_summary.mean_abs) << name;
@@ -280,8 +280,8 @@ TEST(IblError, TheLobeReadsCutTheGrazingError) {
 // rows cut by at least a quarter (measured 57.8%), and the whole map's mean error below R's.
 TEST(IblError, TheFilteredTapsCutTheGrazingErrorWhereTheLobeReadsDoNot) {
   ASSERT_EQ(IblErrorOptions{}.game.split_sum_taps, 64);
-  const auto lobes = grazing_map("studio.exr", GameSplitSumDirection::lobes);
-  const auto map = grazing_map("studio.exr", GameSplitSumDirection::filtered);
+  const auto lobes = grazing_map("studio.exr", GameSplitSumLookup::lobes);
+  const auto map = grazing_map("studio.exr", GameSplitSumLookup::filtered);
   ASSERT_TRUE(lobes.has_value() && map.has_value());
   EXPECT_LT(lobes->grazing_reduction, 0.25);  // the map this test is for
   EXPECT_GE(map->grazing_reduction, 0.25);
