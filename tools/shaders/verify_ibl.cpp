@@ -104,7 +104,7 @@ Result<IblBake> read_ibl_bake(const std::filesystem::path& dir) {
       if (!v) return v.error();
       c[k] = *v;
     }
-    b.sh.c[i] = Rgb(c[0], c[1], c[2]);
+    b.sh.c[i] = Rgb{c[0], c[1], c[2]};
   }
 
   auto lobes_path = in_dir(files["split_sum_lobes"], "split_sum_lobes");
@@ -195,7 +195,7 @@ Result<VerifyReport> verify_ibl(const VerifyOptions& o, const ShaderExport& ex, 
       for (int y = 0; y < n; ++y) {
         for (int x = 0; x < n; ++x) {
           const float* t = bake->chain.texel(l, f, x, y);
-          c.set(f, x, y, Rgb(t[0], t[1], t[2]));
+          c.set(f, x, y, Rgb{t[0], t[1], t[2]});
         }
       }
     }

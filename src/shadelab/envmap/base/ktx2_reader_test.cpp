@@ -21,7 +21,7 @@ std::vector<CubeMap> test_chain(int size, int levels) {
     CubeMap c(n);
     for (int f = 0; f < 6; ++f) {
       for (int y = 0; y < n; ++y) {
-        for (int x = 0; x < n; ++x) c.set(f, x, y, Rgb((x + 1) / 8.0, (y + 2) / 8.0, (f + 8 * l) / 8.0));
+        for (int x = 0; x < n; ++x) c.set(f, x, y, Rgb{(x + 1) / 8.0, (y + 2) / 8.0, (f + 8 * l) / 8.0});
       }
     }
     chain.push_back(std::move(c));
@@ -64,7 +64,7 @@ TEST(Ktx2Reader, ReadsEveryTexelOfEveryLevelAsWritten) {
 TEST(Ktx2Reader, ReadsATwoChannelTable) {
   Image img(5, 3);
   for (int y = 0; y < 3; ++y) {
-    for (int x = 0; x < 5; ++x) img.set(x, y, Rgb(x / 4.0, y / 2.0, 7.0));
+    for (int x = 0; x < 5; ++x) img.set(x, y, Rgb{x / 4.0, y / 2.0, 7.0});
   }
   const auto bytes = encode_ktx2_image(img, Ktx2ImageFormat::rg16f).value();
   const auto t = parse_ktx2(bytes, "dfg.ktx2").value();
