@@ -32,7 +32,7 @@ TEST(Cli, BrdfListHasEveryModelWithParameters) {
   for (const auto& m : j["models"]) names.push_back(m["name"]);
   for (const char* want : {"lambert", "phong", "phong-modified", "blinn-phong", "blinn-phong-modified", "cook-torrance",
                            "minimalist-cook-torrance", "ward", "ward-anisotropic", "lafortune", "wrapped-diffuse",
-                           "ggx", "burley", "filament"}) {
+                           "ggx", "burley", "filament", "layered"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   }
   for (const auto& m : j["models"]) {
@@ -50,6 +50,19 @@ TEST(Cli, BrdfEvalLambert) {
   EXPECT_NEAR(j["f"][0].get<double>(), 0.5 / pi, 1e-15);
   EXPECT_NEAR(j["f"][1].get<double>(), 0.25 / pi, 1e-15);
   EXPECT_NEAR(j["f"][2].get<double>(), 1.0 / pi, 1e-15);
+}
+
+// The layered ground truth's eval is a Monte Carlo estimate: the CLI states its standard error (JSON and text);
+// an exact model has no such key.
+TEST(Cli, BrdfEvalOfAStochasticModelStatesItsStandardError) {
+  const auto j = json_of(run("brdf eval layered --param walk_samples=16 --wi 0.3,0,1 --wo -0.2,0.1,1 --json"));
+  ASSERT_EQ(j["standard_error"].size(), 3u);
+  EXPECT_GT(j["standard_error"][1].get<double>(), 0.0);
+  EXPECT_LT(j["standard_error"][1].get<double>(), j["f"][1].get<double>());
+  EXPECT_TRUE(json_of(run("brdf eval layered --param walk_samples=1 --wi 0.3,0,1 --wo -0.2,0.1,1 --json"))["standard_error"].is_null());
+  EXPECT_FALSE(json_of(run("brdf eval lambert --wi 0,0,1 --wo 0,0,1 --json")).contains("standard_error"));
+  const CliRun text = run("brdf eval layered --wi 0.3,0,1 --wo -0.2,0.1,1");
+  EXPECT_NE(text.out.find("standard error"), std::string::npos) << text.out;
 }
 
 TEST(Cli, BrdfEvalBelowHorizonIsZero) {

@@ -63,10 +63,20 @@ void run_eval(const BrdfOptions& o) {
   const Vec3 wi = parse_direction("--wi", o.wi);
   const Vec3 wo = parse_direction("--wo", o.wo);
   const Rgb v = f->eval(wi, wo);
+  // A stochastic model (the layered ground truth) states the standard error of the estimate it returned.
+  const std::optional<Rgb> se = f->eval_standard_error(wi, wo);
   if (o.json) {
-    print_json({{"f", to_json(v)}});
+    nlohmann::json j = {{"f", to_json(v)}};
+    if (f->is_stochastic()) j["standard_error"] = se ? to_json(*se) : nlohmann::json(nullptr);
+    print_json(j);
   } else {
     fmt::print("f = {:.10g} {:.10g} {:.10g}  (1/sr, without the cosine)\n", v.r, v.g, v.b);
+    if (se) {
+      fmt::print("standard error {:.3g} {:.3g} {:.3g}  (a Monte Carlo estimate: raise walk_samples to reduce it)\n",
+                 se->r, se->g, se->b);
+    } else if (f->is_stochastic()) {
+      fmt::print("standard error unknown from one walk (a Monte Carlo estimate: give walk_samples >= 2)\n");
+    }
   }
 }
 

@@ -258,6 +258,10 @@ Result<ShaderExport> export_model(std::string_view model, const ParamAssignments
   auto brdf = info->create(*values);
   if (!brdf) return brdf.error();
   const std::optional<KernelBinding> binding = (*brdf)->kernel_binding();
+  if (!binding && (*brdf)->is_stochastic()) {
+    return make_error("model '" + info->name + "' has no shader: its eval is a Monte Carlo estimate (a random walk), " +
+                      "the ground truth that shaders are measured against");
+  }
   if (!binding) throw std::logic_error("model " + info->name + " has no kernel binding (Brdf::kernel_binding)");
 
   const Lang lang = options.lang;

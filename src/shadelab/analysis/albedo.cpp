@@ -6,6 +6,7 @@
 
 #include "shadelab/core/constants.h"
 #include "shadelab/core/frame.h"
+#include "shadelab/sampling/rng.h"
 
 namespace shadelab {
 
@@ -88,6 +89,28 @@ Vec3 lobe_peak(const Brdf& f, const Vec3& wo, LobeQuantity quantity) {
 AlbedoResult directional_albedo(const Brdf& f, const Vec3& wo, const AlbedoOptions& options) {
   AlbedoResult result;
   result.wo = wo;
+  if (f.is_stochastic()) {
+    // The mean of the model's own sample weights f cos / pdf (PCG32, fixed seed), error = standard error.
+    Pcg32 rng(0xa1bed0, 3);
+    Rgb sum;
+    Rgb sum2;
+    const int n = std::max(2, options.stochastic_samples);
+    for (int i = 0; i < n; ++i) {
+      const Vec2 u{rng.next_double(), rng.next_double()};
+      const Rgb w = f.sample(wo, u, rng.next_double()).weight;
+      sum += w;
+      sum2 += w * w;
+    }
+    result.albedo = sum / n;
+    for (int c = 0; c < 3; ++c) {
+      const double var = std::max(0.0, sum2[c] / n - result.albedo[c] * result.albedo[c]) * n / (n - 1.0);
+      result.error[c] = std::sqrt(var / n);
+    }
+    result.axis = normal;
+    result.evaluations = n;
+    result.converged = true;
+    return result;
+  }
   result.axis = options.axis ? *options.axis : lobe_peak(f, wo, LobeQuantity::reflected);
   if (!(result.axis.z > 0.0)) result.axis = normal;  // the peak search found nothing above the horizon
   const VectorQuadratureResult q = integrate_directions(

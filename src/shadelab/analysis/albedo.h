@@ -8,13 +8,15 @@
 //   sampler, refined by a local pattern search), with the horizon as an integration boundary. Defaults reach
 //   about 1e-10 relative at normal incidence even for Phong / Blinn-Phong lobes with n = 10000 and about
 //   1e-8 elsewhere. A second sharp lobe far from the first is found only through the adaptive subdivision
-//   (initial_intervals pieces in azimuth): give AlbedoOptions::axis for such a model if needed.
+//   (initial_intervals pieces in azimuth): give AlbedoOptions::axis for such a model if needed. For a
+//   stochastic model (Brdf::is_stochastic: eval is a Monte Carlo estimate) quadrature would chase the noise,
+//   so the albedo is the mean of stochastic_samples sample weights and error is their standard error.
 // - max_albedo scans theta_o over [theta_min, theta_max] (degrees) in steps and refines the best step by
 //   golden-section search; it returns the argmax (radians and degrees) and the largest channel there.
 // - reciprocity_error evaluates f(a, b) and f(b, a) over a fixed grid of directions (including grazing ones
 //   down to 0.001 degrees above the horizon) and returns the largest relative difference per channel,
 //   |f(a,b) - f(b,a)| / max(|f(a,b)|, |f(b,a)|); pairs where both values are below `floor` are skipped.
-// No printing, no randomness: the same inputs give the same results.
+// No printing; randomness only with a fixed seed: the same inputs give the same results.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +34,9 @@ QuadratureOptions albedo_quadrature();
 struct AlbedoOptions {
   QuadratureOptions quadrature = albedo_quadrature();
   std::optional<Vec3> axis;  // integration axis; default: lobe_peak(f, wo, LobeQuantity::reflected)
+  // A stochastic model (Brdf::is_stochastic, whose eval is noisy) is integrated by its own sampler instead:
+  // the mean of this many sample weights (fixed seed), error = its standard error.
+  int stochastic_samples = 20000;
 };
 
 struct AlbedoResult {

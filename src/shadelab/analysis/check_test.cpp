@@ -95,7 +95,7 @@ TEST(Check, BrokenModelsFail) {
   EXPECT_TRUE(item(wrong_weight, "chi-square theta=0").passed);
 
   // A sampler that draws from another distribution but reports a consistent pdf and weight for each sample
-  // (as LayeredBrdf does by construction): only the independent mean of the weights (and chi-square) see it.
+  // (as LobeMixtureBrdf does by construction): only the independent mean of the weights (and chi-square) see it.
   const CheckReport resampled = check_brdf(*broken("phong-modified", {{"n", "20"}, {"kd", "0"}}, Broken::Fault::resampled), quick());
   EXPECT_FALSE(item(resampled, "sample weights").passed) << item(resampled, "sample weights").detail;
   EXPECT_GT(item(resampled, "sample weights").figure, 5.0);

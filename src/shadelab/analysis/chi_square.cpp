@@ -362,8 +362,9 @@ QuadratureResult pdf_integral(const Brdf& f, const Vec3& wo, const QuadratureOpt
     const VectorQuadratureResult up = integrate_directions(
         [&](const Vec3& wi, std::span<double> out) { out[0] = f.pdf(wi, wo); }, 1, upper.z > 0.0 ? upper : Vec3{0, 0, 1},
         SphereRegion::upper, options);
-    const double share = sampled_share_below_horizon(f, wo, pdf_integral_lower_samples);
-    const double se = std::sqrt(share * (1.0 - share) / static_cast<double>(pdf_integral_lower_samples));
+    const std::uint64_t n = pdf_integral_lower_samples_for(f);
+    const double share = sampled_share_below_horizon(f, wo, n);
+    const double se = std::sqrt(share * (1.0 - share) / static_cast<double>(n));
     return {up.value[0] + share, up.error[0] + se, up.evaluations, up.subdivisions, up.converged};
   }
   const VectorQuadratureResult q = integrate_sphere(

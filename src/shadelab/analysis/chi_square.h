@@ -23,7 +23,7 @@
 //   half about the pdf's peak there, the lower half about -wo (where reflection samplers have an integrable
 //   1 / |wo.h| singularity) or about a lobe that peaks below the horizon. It should be 1. For a model whose
 //   pdf_smooth_below_horizon() is false (brdf.h: a density that jumps across a curve below the horizon), the
-//   lower half is the sampler's share of pdf_integral_lower_samples samples below the horizon instead, and the
+//   lower half is the sampler's share of pdf_integral_lower_samples_for(f) samples below the horizon instead, and the
 //   result's error adds that share's binomial standard error.
 // - For such a model chi_square_test pools the whole lower hemisphere into one bin whose expected count is N
 //   minus the upper cells' (lower_pooled): the sampler's mass below the horizon is tested, not its shape
@@ -104,6 +104,11 @@ WeightMean weight_mean(const Brdf& f, const Vec3& wo, std::uint64_t count, std::
 // The share of count samples of f.sample(wo, ...) that fall on or below the horizon.
 double sampled_share_below_horizon(const Brdf& f, const Vec3& wo, std::uint64_t count, std::uint64_t seed = 0x5eed);
 constexpr std::uint64_t pdf_integral_lower_samples = 1'000'000;
+// The count pdf_integral takes for f: a fifth for a stochastic model (Brdf::is_stochastic), whose every sample
+// evaluates a Monte Carlo estimate for its weight (the tolerance, 4 standard errors, widens with it).
+inline std::uint64_t pdf_integral_lower_samples_for(const Brdf& f) {
+  return f.is_stochastic() ? pdf_integral_lower_samples / 5 : pdf_integral_lower_samples;
+}
 
 // rel_tol 1e-9 by default.
 QuadratureResult pdf_integral(const Brdf& f, const Vec3& wo, const QuadratureOptions& options = [] {

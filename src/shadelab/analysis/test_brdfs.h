@@ -40,7 +40,7 @@ class Broken final : public Brdf {
     claims_non_reciprocal,
     non_reciprocal,       // f(wi, wo) scaled by (1 + wi.z), which breaks symmetry
     resampled,            // draws wi with u.x squared but reports pdf() and f cos / pdf for it: consistent
-                          // per sample (as LayeredBrdf is by construction), biased on average
+                          // per sample (as LobeMixtureBrdf is by construction), biased on average
   };
   Broken(BrdfPtr inner, Fault fault) : m_inner(std::move(inner)), m_fault(fault) {}
 

@@ -27,7 +27,7 @@ BlinnPhong::Normalization parse_normalization(const std::string& s) {
 }  // namespace
 
 BlinnPhong::BlinnPhong(const Rgb& kd, const Rgb& ks, double n, Normalization normalization, bool modified)
-    : LayeredBrdf(normalization == Normalization::none ? kd : kd * inv_pi,
+    : LobeMixtureBrdf(normalization == Normalization::none ? kd : kd * inv_pi,
                   // Specular albedo estimate: N times the lobe integral bound 8 pi / (n + 2).
                   lobe_probability(normalization == Normalization::none ? kd.average() * pi : kd.average(),
                                    ks.average() * normalization_factor(n, normalization, modified) * 8.0 * pi /

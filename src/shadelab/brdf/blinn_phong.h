@@ -12,12 +12,12 @@
 #pragma once
 
 #include "shadelab/brdf/gloss.h"
-#include "shadelab/brdf/layered.h"
+#include "shadelab/brdf/lobe_mixture.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
-class BlinnPhong final : public LayeredBrdf {
+class BlinnPhong final : public LobeMixtureBrdf {
  public:
   enum class Normalization { none, exact, lower, upper };
   BlinnPhong(const Rgb& kd, const Rgb& ks, double n, Normalization normalization, bool modified);

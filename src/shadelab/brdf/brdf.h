@@ -109,6 +109,14 @@ class Brdf {
   // (the original Phong and Blinn-Phong, which divide by N.L; wrapped diffuse with w > 0).
   virtual bool is_reciprocal() const { return true; }
 
+  // True when eval is a Monte Carlo estimate (the layered ground truth, brdf/layered.h): a deterministic
+  // function of the pair, but noisy. Such a model has no shader kernel and is reciprocal in expectation only;
+  // the analysis measures it by sampling where quadrature would chase the noise (analysis/check.h).
+  virtual bool is_stochastic() const { return false; }
+  // For a stochastic model, the standard error of eval(wi, wo)'s own estimate (from the same random numbers:
+  // eval's value is the mean it belongs to); nullopt for an exact model, or when one sample gives no spread.
+  virtual std::optional<Rgb> eval_standard_error(const Vec3& /*wi*/, const Vec3& /*wo*/) const { return std::nullopt; }
+
   // False when the sampler's density jumps across a curve below the horizon (the support edge of the visible-
   // normal samplers, the cut of the bounded one), which quadrature over the sphere cannot resolve. The
   // analysis then integrates the density over the upper hemisphere only and checks the mass below the horizon

@@ -39,7 +39,7 @@ kernel::CookTorranceParams kernel_params(const CookTorrance::Params& p) {
 }  // namespace
 
 CookTorrance::CookTorrance(const Params& p)
-    : LayeredBrdf(p.kd * inv_pi, lobe_probability(p.kd.average(), p.ks.average())),
+    : LobeMixtureBrdf(p.kd * inv_pi, lobe_probability(p.kd.average(), p.ks.average())),
       m_p(p),
       m_k(kernel::cook_torrance_prepare(kernel_params(p))) {}
 

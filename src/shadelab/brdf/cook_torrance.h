@@ -17,12 +17,12 @@
 #pragma once
 
 #include "shadelab/brdf/gloss.h"
-#include "shadelab/brdf/layered.h"
+#include "shadelab/brdf/lobe_mixture.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
-class CookTorrance final : public LayeredBrdf {
+class CookTorrance final : public LobeMixtureBrdf {
  public:
   enum class Distribution { beckmann, blinn_phong, ggx };
   enum class Geometry { cook_torrance, kelemen, smith };

@@ -1,7 +1,7 @@
 // diffuse_albedo() of every model with a constant diffuse term: pi times that term, the directional albedo
 // of the diffuse part alone (the game renderer's SH ambient multiplies it, render/game_renderer.cpp). The
 // independent value is pi x eval with the specular lobe switched off (ks = 0), which goes through the
-// model's kernel (kernels/*.sl), not through the LayeredBrdf constructor that stores diffuse_albedo().
+// model's kernel (kernels/*.sl), not through the LobeMixtureBrdf constructor that stores diffuse_albedo().
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -17,7 +17,7 @@ kernel::FilamentParams kernel_params(const Filament::Params& p) {
 
 }  // namespace
 
-Filament::Filament(const Params& p) : LayeredBrdf(Rgb{}, 0.0), m_p(p), m_k(kernel::filament_prepare(kernel_params(p))) {
+Filament::Filament(const Params& p) : LobeMixtureBrdf(Rgb{}, 0.0), m_p(p), m_k(kernel::filament_prepare(kernel_params(p))) {
   m_diffuse = Rgb(m_k.diffuse_colour) * inv_pi;
   // The specular lobe's average albedo is about Schlick's F_avg = (20 f0 + 1) / 21 (fresnel.sl).
   const Rgb f_avg = kernel::F_average_by_kind_rgb(kernel::FRESNEL_SCHLICK, kernel::rgb(1.0), kernel::rgb(0.0), m_k.f0);

@@ -14,13 +14,13 @@
 // bounded VNDF sampler (microfacet.h), the diffuse one with the cosine lobe.
 #pragma once
 
-#include "shadelab/brdf/layered.h"
+#include "shadelab/brdf/lobe_mixture.h"
 #include "shadelab/brdf/microfacet.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
-class Filament final : public LayeredBrdf {
+class Filament final : public LobeMixtureBrdf {
  public:
   enum class Diffuse { lambert, burley };  // the kernel's FILAMENT_DIFFUSE_* numbering
   struct Params {

@@ -224,5 +224,30 @@ TEST(FresnelSchlick, EndpointsAndErrorAgainstExact) {
   EXPECT_LT(max_err_above_02, 0.0197);
 }
 
+// F82 tint (kernels/fresnel.sl): at mu_bar = 1/7 it is tint times Schlick's F; at normal incidence f0, at grazing
+// 1; tint 1 is Schlick's F; and the correction is a mu (1 - mu)^6 term, so (Schlick - F82) / (mu (1 - mu)^6) is
+// the same constant a at every angle. Written here from the definition (Hoffman 2023), not from the kernel.
+TEST(Fresnel, F82TintMeetsItsDefinition) {
+  const double mu_bar = 1.0 / 7.0;
+  for (double f0 : {0.04, 0.56, 0.95}) {
+    for (double tint : {0.0, 0.4, 1.0}) {
+      const double schlick_bar = f0 + (1.0 - f0) * std::pow(1.0 - mu_bar, 5.0);
+      EXPECT_NEAR(kernel::F_schlick_f82(mu_bar, f0, tint), tint * schlick_bar, 1e-15) << f0 << " " << tint;
+      EXPECT_NEAR(kernel::F_schlick_f82(1.0, f0, tint), f0, 1e-15);
+      EXPECT_NEAR(kernel::F_schlick_f82(0.0, f0, tint), 1.0, 1e-15);
+      const double a = (1.0 - tint) * schlick_bar / (mu_bar * std::pow(1.0 - mu_bar, 6.0));
+      for (double mu : {0.05, 0.3, 0.7}) {
+        const double schlick = f0 + (1.0 - f0) * std::pow(1.0 - mu, 5.0);
+        EXPECT_NEAR(kernel::F_schlick_f82(mu, f0, tint), schlick - a * mu * std::pow(1.0 - mu, 6.0), 1e-14);
+        if (tint == 1.0) {
+          EXPECT_EQ(kernel::F_schlick_f82(mu, f0, tint), F_schlick(mu, f0));
+        }
+      }
+    }
+  }
+  const Rgb c = kernel::F_schlick_f82_rgb(0.3, Rgb{0.9, 0.6, 0.3}, Rgb{0.5, 1.0, 0.2});
+  EXPECT_EQ(c.g, kernel::F_schlick_f82(0.3, 0.6, 1.0));
+}
+
 }  // namespace
 }  // namespace shadelab

@@ -40,7 +40,7 @@ std::pair<double, double> lobe_albedos(const Ggx::Params& p, const kernel::GgxSt
 }  // namespace
 
 Ggx::Ggx(const Params& p)
-    : LayeredBrdf(p.kd * inv_pi, 0.0), m_p(p), m_k(kernel::ggx_prepare(kernel_params(p))) {
+    : LobeMixtureBrdf(p.kd * inv_pi, 0.0), m_p(p), m_k(kernel::ggx_prepare(kernel_params(p))) {
   const auto [diffuse, specular] = lobe_albedos(m_p, m_k);
   m_p_diffuse = lobe_probability(diffuse, specular);
 }

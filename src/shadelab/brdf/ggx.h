@@ -22,16 +22,16 @@
 //   vndf-bounded  Eto & Tokuyoshi 2023 (SIGGRAPH Asia TC): caps cut to the half vectors that can reflect above
 //                 the horizon; the default (lowest variance: tested)
 // The diffuse base (and, with ms, the multiple-scattering lobe, which is diffuse-like) is sampled by the
-// cosine lobe of LayeredBrdf's one-sample MIS.
+// cosine lobe of LobeMixtureBrdf's one-sample MIS.
 #pragma once
 
-#include "shadelab/brdf/layered.h"
+#include "shadelab/brdf/lobe_mixture.h"
 #include "shadelab/brdf/microfacet.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
-class Ggx final : public LayeredBrdf {
+class Ggx final : public LobeMixtureBrdf {
  public:
   enum class Sampler { ndf, vndf, vndf_caps, vndf_bounded };
   enum class Geometry { smith_separable, smith_correlated };  // the kernel's GGX_ENERGY_G_* numbering

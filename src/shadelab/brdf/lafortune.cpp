@@ -31,7 +31,7 @@ kernel::LafortuneParams kernel_params(const Rgb& kd, const Rgb& ks, const std::v
 }  // namespace
 
 Lafortune::Lafortune(const Rgb& kd, const Rgb& ks, std::vector<Lobe> lobes)
-    : LayeredBrdf(kd * inv_pi, [&] {
+    : LobeMixtureBrdf(kd * inv_pi, [&] {
         // Specular estimate at normal incidence: s = Cz V with V = N.
         double spec = 0.0;
         for (const auto& l : lobes) spec += lobe_weight(std::abs(l.cz), l.n);

@@ -15,12 +15,12 @@
 
 #include <vector>
 
-#include "shadelab/brdf/layered.h"
+#include "shadelab/brdf/lobe_mixture.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
-class Lafortune final : public LayeredBrdf {
+class Lafortune final : public LobeMixtureBrdf {
  public:
   struct Lobe {
     double cx = -1.0;

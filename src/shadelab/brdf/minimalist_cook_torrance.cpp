@@ -10,7 +10,7 @@
 namespace shadelab {
 
 MinimalistCookTorrance::MinimalistCookTorrance(const Rgb& kd, const Rgb& ks, double n)
-    : LayeredBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())),
+    : LobeMixtureBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())),
       m_kp{kd, ks, n},
       m_k(kernel::minimalist_cook_torrance_prepare(m_kp)),
       m_n(n) {}

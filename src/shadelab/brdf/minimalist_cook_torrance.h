@@ -9,12 +9,12 @@
 #pragma once
 
 #include "shadelab/brdf/gloss.h"
-#include "shadelab/brdf/layered.h"
+#include "shadelab/brdf/lobe_mixture.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
-class MinimalistCookTorrance final : public LayeredBrdf {
+class MinimalistCookTorrance final : public LobeMixtureBrdf {
  public:
   MinimalistCookTorrance(const Rgb& kd, const Rgb& ks, double n);
   Rgb eval(const Vec3& wi, const Vec3& wo) const override {

@@ -27,7 +27,7 @@ double Phong::normalization_factor(double n, Normalization normalization, bool m
 }
 
 Phong::Phong(const Rgb& kd, const Rgb& ks, double n, Normalization normalization, bool modified)
-    : LayeredBrdf(normalization == Normalization::exact ? kd * inv_pi : kd,
+    : LobeMixtureBrdf(normalization == Normalization::exact ? kd * inv_pi : kd,
                   lobe_probability(normalization == Normalization::exact ? kd.average() : kd.average() * pi,
                                    ks.average() * normalization_factor(n, normalization, modified) * lobe_albedo(n))),
       m_kp{kd, ks, n,

@@ -11,12 +11,12 @@
 // Sampling: a power-cosine lobe of exponent n about R (pdf (n + 1)/(2 pi) (R.L)^n over the sphere).
 #pragma once
 
-#include "shadelab/brdf/layered.h"
+#include "shadelab/brdf/lobe_mixture.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
-class Phong final : public LayeredBrdf {
+class Phong final : public LobeMixtureBrdf {
  public:
   enum class Normalization { none, exact };
   Phong(const Rgb& kd, const Rgb& ks, double n, Normalization normalization, bool modified);

@@ -67,5 +67,6 @@ ModelInfo wrapped_diffuse_model();
 ModelInfo ggx_model();
 ModelInfo burley_model();
 ModelInfo filament_model();
+ModelInfo layered_model();
 
 }  // namespace shadelab

@@ -9,7 +9,7 @@
 namespace shadelab {
 
 Ward::Ward(const Rgb& kd, const Rgb& ks, double alpha_x, double alpha_y)
-    : LayeredBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())),
+    : LobeMixtureBrdf(kd * inv_pi, lobe_probability(kd.average(), ks.average())),
       m_kp{kd, ks, alpha_x, alpha_y},
       m_k(kernel::ward_prepare(m_kp)),
       m_ax(alpha_x),

@@ -17,13 +17,13 @@
 #pragma once
 
 #include "shadelab/brdf/gloss.h"
-#include "shadelab/brdf/layered.h"
+#include "shadelab/brdf/lobe_mixture.h"
 #include "shadelab/brdf/microfacet.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
 
-class Ward final : public LayeredBrdf {
+class Ward final : public LobeMixtureBrdf {
  public:
   Ward(const Rgb& kd, const Rgb& ks, double alpha_x, double alpha_y);
   Rgb eval(const Vec3& wi, const Vec3& wo) const override { return kernel::ward_eval(m_k, wi, wo); }

@@ -69,6 +69,26 @@ inline rgb F_schlick_rgb(real cos_i, rgb f0) {
   return f0 + (rgb(1.0) - f0) * (m2 * m2 * m);
 }
 
+// F82-tint metal: Schlick's F minus a mu (1 - mu)^6 term whose size a makes F at mu_bar = 1/7 (about 82
+// degrees) equal tint times Schlick's F there, a = (1 - tint) F_s(mu_bar) / (mu_bar (1 - mu_bar)^6)
+// (Hoffman 2023, "Generalization of Adobe's Fresnel Model"; OpenPBR Surface 1.1, section "Metal"). tint = 1
+// is Schlick's F.
+inline real F_schlick_f82(real cos_i, real f0, real tint) {
+  real mu_bar = 1.0 / 7.0;
+  real m = 1.0 - mu_bar;
+  real m6 = m * m * m * m * m * m;
+  real a = (1.0 - tint) * F_schlick(mu_bar, f0) / (mu_bar * m6);
+  real c = clamp(cos_i, 0.0, 1.0);
+  real n = 1.0 - c;
+  real n6 = n * n * n * n * n * n;
+  return F_schlick(c, f0) - a * c * n6;
+}
+
+inline rgb F_schlick_f82_rgb(real cos_i, rgb f0, rgb tint) {
+  return rgb(F_schlick_f82(cos_i, f0.r, tint.r), F_schlick_f82(cos_i, f0.g, tint.g),
+             F_schlick_f82(cos_i, f0.b, tint.b));
+}
+
 // Reflectance at normal incidence of a dielectric of relative index n: ((n - 1)/(n + 1))^2.
 inline real f0_from_ior(real n) {
   real r = (n - 1.0) / (n + 1.0);
