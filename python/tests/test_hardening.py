@@ -186,28 +186,30 @@ def test_images_refuse_dtypes_that_are_not_real(tmp_path):
 def test_renders_in_two_threads_run_at_once_and_give_the_serial_bits(scenes_dir):
     # The GIL is released while rendering (both modes): two renders in two Python threads give the bits of
     # the same renders one after the other, and while they run this thread keeps running Python code.
-    scene = tiny(scenes_dir, 96, 64)
+    scene = tiny(scenes_dir, 320, 180)
     serial = {m: shadelab.render(scene, mode=m, threads=1, spp=4) for m in ("reference", "game")}
-    t0 = time.perf_counter()
-    shadelab.render(scene, threads=1, spp=4)
-    alone = time.perf_counter() - t0
     results = {}
 
     def work(mode):
-        results[mode] = shadelab.render(scene, mode=mode, threads=1, spp=4)
+        results[mode] = shadelab.render(scene, mode=mode, threads=1, spp=4)  # about 0.4 s each
 
     threads = [threading.Thread(target=work, args=(m,)) for m in serial]
+    t0 = last = time.perf_counter()
     for t in threads:
         t.start()
-    longest, last, ticks = 0.0, time.perf_counter(), 0
+    stalled = 0.0  # the time this thread spent in gaps of over 50 ms between its iterations
     while any(t.is_alive() for t in threads):
         now = time.perf_counter()
-        longest, last, ticks = max(longest, now - last), now, ticks + 1
+        stalled += now - last if now - last > 0.05 else 0.0
+        last = now
+    wall = time.perf_counter() - t0
     for t in threads:
         t.join()
     for m in serial:
         assert np.array_equal(results[m], serial[m]), m
-    assert ticks > 100 and longest < 0.5 * alone, (ticks, longest, alone)
+    # With the GIL held by a render this thread would stall for all of it; load from other processes on the
+    # two cores makes a few gaps of up to 0.3 s, never most of the time.
+    assert stalled < 0.5 * wall, (stalled, wall)
 
 
 @pytest.mark.parametrize("mode", ["reference", "game"])
@@ -226,3 +228,18 @@ def test_ctrl_c_stops_a_render_within_a_tile(scenes_dir, mode):
     assert time.perf_counter() - t0 < 3.5
     # The module works on afterwards.
     assert shadelab.render(tiny(scenes_dir), mode=mode).shape == (6, 8, 3)
+
+
+def test_light_messages_name_the_argument():
+    # Was "light: unknown unit 'x'" (the CLI command's name) for either argument, and inf for an overflow.
+    with pytest.raises(ValueError) as e:
+        shadelab.convert_light(1, "x", "lux")
+    assert str(e.value) == "from_unit: unknown unit 'x' (units: light_units())"
+    with pytest.raises(ValueError) as e:
+        shadelab.convert_light(1, "game", "luxx")
+    assert str(e.value) == "to_unit: unknown unit 'luxx' (units: light_units())"
+    with pytest.raises(ValueError) as e:
+        shadelab.convert_light(1e308, "game", "W/m2")
+    assert str(e.value) == ("value: 1e+308 game overflows when converted to W/m2 (the result exceeds the largest "
+                            "double, about 1.8e308)")
+    assert shadelab.convert_light(1e300, "game", "W/m2") == pytest.approx(1e300 * np.pi)
