@@ -104,7 +104,7 @@ class ValueTreeToJson {
     if (depth > m_depth_limit) fail(pointer, "nested deeper than " + std::to_string(m_depth_limit) + " levels");
     switch (m_source.kind(v)) {
       case ValueKind::null: spend(4, pointer, "null"); return nullptr;
-      case ValueKind::boolean: spend(5, pointer, "a boolean"); return m_source.boolean(v);
+      case ValueKind::boolean: spend(4, pointer, "a boolean"); return m_source.boolean(v);
       case ValueKind::integer: {
         IntegerValue x;
         if (!m_source.integer(v, x)) fail(pointer, "the integer " + printable(m_source.repr(v)) + " is too large");
