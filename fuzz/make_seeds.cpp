@@ -13,7 +13,6 @@
 
 #include <cstdio>
 #include <fstream>
-#include <iterator>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -185,8 +184,8 @@ int main(int argc, char** argv) {
     }
     const fs::path part = shard / ("part-" + std::to_string(index) + "-of-2.exr");
     check(write_shard(part, make_shard_info(scene, ro, 4, 3), *result));
-    std::ifstream in(part, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string bytes(static_cast<std::size_t>(fs::file_size(part)), '\0');
+    std::ifstream(part, std::ios::binary).read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     both += index == 0 ? bytes + "\n#--shadelab-fuzz-next-file--\n" : bytes;
   }
   std::ofstream(shard / "merge-0-and-1", std::ios::binary) << both;
