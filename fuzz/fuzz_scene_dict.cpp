@@ -4,10 +4,12 @@
 //   "@huge:N"    a sequence of N items (not stored: like range(N), each item the integer 0)
 //   "@other:T"   a value of another type T (complex, bytes, ...)
 //   "@bigint"    an integer beyond 64 bits;  "@nan", "@inf": non-finite floats
+// The converter runs with a bound of 1 MiB instead of a scene file's 64 MiB (its constructor's parameter;
+// the same code), so that a "@huge" sequence just inside the bound converts in milliseconds, not seconds.
 // Contract checked: the converter's error is one printable line "scene: /POINTER: ..." and no item of a
-// sequence is read when its length alone passes the 64 MiB (at most 2^24 items are ever read); the JSON it
-// makes is at least as long as the bytes it counted (the count is a lower bound, so the 64 MiB of a scene
-// file hold); parse_scene's error is one printable line naming "scene"; an accepted scene passes
+// sequence is read when its length alone passes the bound (at most 2^19 items, 2 bytes each, are ever read);
+// the JSON it makes is at least as long as the bytes it counted (the count is a lower bound, so the bound
+// holds for the JSON text); parse_scene's error is one printable line naming "scene"; an accepted scene passes
 // check_scene_limits.
 #include <cctype>
 #include <cmath>
@@ -32,6 +34,8 @@ namespace {
 struct Value {
   const json* j = nullptr;  // null: an item of a "@huge" sequence (the integer 0)
 };
+
+constexpr std::uint64_t byte_limit = 1ULL << 20;
 
 struct JsonSource {
   std::uint64_t items_read = 0;
@@ -101,7 +105,7 @@ struct JsonSource {
     const std::size_t n = length(v);
     const bool huge = !special(v).empty();
     for (std::size_t i = 0; i < n; ++i) {
-      if (++items_read > (1u << 24)) fuzz::finding("items read past the bound", std::to_string(items_read));
+      if (++items_read > byte_limit / 2) fuzz::finding("items read past the bound", std::to_string(items_read));
       f(i, huge ? Value{} : Value{&(*v.j)[i]});
     }
   }
@@ -125,7 +129,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const json tree = json::parse(fuzz::as_text(data, size), nullptr, false);
   if (tree.is_discarded()) return 0;  // the tree is the input's, not the converter's; the scene harness fuzzes the parser
   JsonSource source;
-  ValueTreeToJson<JsonSource> convert(source);
+  ValueTreeToJson<JsonSource> convert(source, byte_limit);
   json doc;
   try {
     doc = convert.convert(Value{&tree});
@@ -134,7 +138,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     fuzz::require_one_line(line, "scene: /");
     return 0;
   }
-  if (convert.bytes_counted() > max_scene_file_bytes) fuzz::finding("counted past the bound", std::to_string(convert.bytes_counted()));
+  if (convert.bytes_counted() > byte_limit) fuzz::finding("counted past the bound", std::to_string(convert.bytes_counted()));
   const std::string text = doc.dump(-1, ' ', false, json::error_handler_t::replace);
   if (text.size() < convert.bytes_counted()) {
     fuzz::finding("the count is not a lower bound", std::to_string(text.size()) + " < " + std::to_string(convert.bytes_counted()));
