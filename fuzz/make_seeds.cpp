@@ -12,11 +12,17 @@
 #include <ImfTiledRgbaFile.h>
 
 #include <cstdio>
+#include <fstream>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "shadelab/envmap/base/ktx.h"
+#include "shadelab/envmap/base/ktx2.h"
+#include "shadelab/envmap/base/texel_format.h"
+#include "shadelab/render/path_tracer.h"
+#include "shadelab/render/shard_file.h"
+#include "shadelab/scene/default_scene.h"
 #include "shadelab/image/image_io.h"
 
 using namespace shadelab;
@@ -145,6 +151,44 @@ int main(int argc, char** argv) {
     check(write_ktx_cubemap({cube(1, 2.0)}, ktx / ("single" + suffix), t));
   }
   check(write_ktx_cubemap({cube(2, 1e5)}, ktx / "clamped_rgba16f.ktx", KtxPixelType::half));
-  std::printf("wrote the EXR and KTX seeds under %s\n", argv[1]);
+  // KTX 2 (fuzz/corpus/ktx2): a chain in each cube format the reader reads, one level, and the DFG table's
+  // 2D formats with key/value data.
+  const fs::path ktx2 = fs::path(argv[1]) / "ktx2";
+  fs::create_directories(ktx2);
+  for (TexelFormat f : all_texel_formats) {
+    const std::string name = texel_format_name(f);
+    check(write_ktx2_cubemap(chain, ktx2 / ("chain_" + name + ".ktx2"), f, {{"shadelab.mip_mapping", "linear"}}));
+  }
+  check(write_ktx2_cubemap({cube(1, 2.0)}, ktx2 / "single_rgba16f.ktx2", TexelFormat::rgba16f));
+  check(write_ktx2_image(gradient(4, 4), ktx2 / "table_rg16f.ktx2", Ktx2ImageFormat::rg16f, {{"shadelab.table", "dfg"}}));
+  check(write_ktx2_image(gradient(3, 2), ktx2 / "table_rgba16f.ktx2", Ktx2ImageFormat::rgba16f));
+
+  // Shard parts (fuzz/corpus/shard): the two sample shards of the default scene at 8 x 4 pixels and 4 spp,
+  // each alone, and both in one input (the second after the separator line: a merge of the two).
+  const fs::path shard = fs::path(argv[1]) / "shard";
+  fs::create_directories(shard);
+  Scene scene = default_scene();
+  scene.camera.width = 8;
+  scene.camera.height = 4;
+  std::string both;
+  for (int index = 0; index < 2; ++index) {
+    RenderOptions ro;
+    ro.spp = 4;
+    ro.max_depth = 3;
+    ro.threads = 1;
+    ro.shard = ShardSpec{index, 2, ShardSplit::samples};
+    auto result = render_scene(scene, ro);
+    if (!result) {
+      std::fprintf(stderr, "%s\n", result.error().message.c_str());
+      return 1;
+    }
+    const fs::path part = shard / ("part-" + std::to_string(index) + "-of-2.exr");
+    check(write_shard(part, make_shard_info(scene, ro, 4, 3), *result));
+    std::string bytes(static_cast<std::size_t>(fs::file_size(part)), '\0');
+    std::ifstream(part, std::ios::binary).read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    both += index == 0 ? bytes + "\n#--shadelab-fuzz-next-file--\n" : bytes;
+  }
+  std::ofstream(shard / "merge-0-and-1", std::ios::binary) << both;
+  std::printf("wrote the EXR, KTX, KTX 2 and shard seeds under %s\n", argv[1]);
   return 0;
 }

@@ -348,6 +348,9 @@ def dicts():
 
     walk(schema)
     write("scene", list(words) + ["1e308", "-0", "1e-300", "[0, 0, 0]", "NaN", "null", "true", "{}", "[]"])
+    # The scene-dict converter's tree (fuzz_scene_dict.cpp): the scene's words and the special strings.
+    write("scene_dict", list(words) + ["1e308", "-0", "[0, 0, 0]", "null", "true", "{}", "[]", "\"@huge:", "\"@huge:100000000\"",
+                                       "\"@other:complex\"", "\"@bigint\"", "\"@nan\"", "\"@inf\""])
     gltf_words = ["asset", "version", "2.0", "scene", "scenes", "nodes", "children", "mesh", "meshes", "primitives",
                   "attributes", "POSITION", "NORMAL", "TEXCOORD_0", "indices", "mode", "accessors", "bufferView",
                   "byteOffset", "byteLength", "byteStride", "componentType", "count", "type", "SCALAR", "VEC2", "VEC3",

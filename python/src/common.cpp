@@ -23,13 +23,36 @@ std::string shape_text(const py::array& a) {
   return s + (a.ndim() == 1 ? ",)" : ")");
 }
 
-DoubleArray to_double_array(py::handle obj, const std::string& name) {
-  if (obj.is_none()) fail(name + ": expected an array of numbers, got None");
-  auto arr = DoubleArray::ensure(obj);
-  if (!arr) {
-    PyErr_Clear();
-    fail(name + ": expected an array of numbers, got " + std::string(py::str(py::type::of(obj).attr("__name__"))));
+py::object real_array(py::handle obj, const std::string& name, const std::string& expected) {
+  const std::string type = py::str(py::type::of(obj).attr("__name__")).cast<std::string>();
+  if (obj.is_none()) fail(name + ": " + expected + ", got None");
+  const py::module_ np = py::module_::import("numpy");
+  if (py::isinstance(obj, np.attr("ma").attr("MaskedArray"))) {
+    fail(name + ": a masked array (its mask would be ignored; give .filled(value) or .compressed())");
   }
+  py::object a;
+  try {
+    a = np.attr("asarray")(obj);  // a ragged list raises
+  } catch (py::error_already_set&) {
+    fail(name + ": " + expected + ", got " + type);
+  }
+  const std::string dtype = py::str(a.attr("dtype")).cast<std::string>();
+  const char kind = a.attr("dtype").attr("kind").cast<std::string>().at(0);
+  if (kind != 'i' && kind != 'u' && kind != 'f') {
+    // bool, complex, str, bytes, object, datetime: NumPy would cast them (strings parsed, imaginary parts
+    // dropped, True as 1), which reads a wrong input as numbers.
+    if (py::isinstance<py::array>(obj)) fail(name + ": " + expected + ", got an array of dtype " + dtype);
+    if (py::isinstance<py::str>(obj) || py::isinstance<py::bytes>(obj)) fail(name + ": " + expected + ", got " + type);
+    fail(name + ": " + expected + ", got " + type + " (NumPy reads it as dtype " + dtype + ")");
+  }
+  return a;
+}
+
+DoubleArray to_double_array(py::handle obj, const std::string& name) {
+  // Any layout (strided, negative strides, Fortran order) and any integer or float dtype: copied into a
+  // C-contiguous float64 array when it is not one already.
+  auto arr = DoubleArray::ensure(real_array(obj, name, "expected an array of numbers"));
+  if (!arr) throw py::error_already_set();
   return arr;
 }
 
@@ -157,13 +180,8 @@ std::string path_text(py::handle obj) {
 
 Image to_image(py::handle obj, const std::string& name, bool finite) {
   const FloatArray arr = [&] {
-    if (obj.is_none()) fail(name + ": expected an image array of shape (H, W, 3), got None");
-    auto a = FloatArray::ensure(obj);
-    if (!a) {
-      PyErr_Clear();
-      fail(name + ": expected an image array of shape (H, W, 3), got " +
-           std::string(py::str(py::type::of(obj).attr("__name__"))));
-    }
+    auto a = FloatArray::ensure(real_array(obj, name, "expected an image array of shape (H, W, 3)"));
+    if (!a) throw py::error_already_set();
     return a;
   }();
   const bool rgb = arr.ndim() == 3 && arr.shape(2) == 3;

@@ -6,6 +6,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -42,6 +44,11 @@ std::string shape_text(const py::array& a);
 
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+// obj as a NumPy array of an integer or float dtype (np.asarray: no copy when it is one), or a ValueError
+// "NAME: EXPECTED, got ..." for None, a ragged list, a masked array, or an array (or what NumPy makes of the
+// object) of dtype bool, complex, str, bytes, object or datetime, which a cast would misread as numbers.
+py::object real_array(py::handle obj, const std::string& name, const std::string& expected);
 
 // Any array-like of numbers as a C-contiguous float64 array (no copy when it already is one).
 DoubleArray to_double_array(py::handle obj, const std::string& name);
@@ -168,6 +175,11 @@ double* output_buffer(py::handle out, const std::vector<py::ssize_t>& shape, con
 
 py::tuple rgb_tuple(const Rgb& c);
 py::array_t<double> rgb_array(const Rgb& c);
+
+// A scene dict as the JSON document parse_scene reads (scene_dict.cpp, over scene/value_tree.h): bounded as a
+// scene file is (64 levels, 64 MiB of JSON, each length checked before its items are read); a value that is
+// not JSON is a ValueError naming its pointer, "scene: /shapes/0/radius: ...".
+nlohmann::json scene_dict_json(py::handle scene);
 
 // str or os.PathLike -> the path as text; is_path tells whether obj is one.
 bool is_path(py::handle obj);

@@ -194,9 +194,9 @@ Environment environment(py::handle image, py::handle input_size) {
     if (size == -1 && img.is_valid() && img.width == 2 * img.height) return {img, {}};
     return {std::nullopt, unwrap(environment_cube(img, size), p + ": ")};
   }
-  const FloatArray arr = FloatArray::ensure(image);
-  if (!arr) PyErr_Clear();
-  if (arr && arr.ndim() == 4) {
+  const FloatArray arr = FloatArray::ensure(real_array(image, "image", "expected an image array of shape (H, W, 3)"));
+  if (!arr) throw py::error_already_set();
+  if (arr.ndim() == 4) {
     const py::ssize_t s = arr.shape(1);
     if (arr.shape(0) != 6 || arr.shape(2) != s || arr.shape(3) != 3 || s < 1 || s > max_environment_face_size) {
       fail("image: cube faces need shape (6, S, S, 3) with S in [1, " + std::to_string(max_environment_face_size) +

@@ -7,6 +7,7 @@
 
 #include "bindings.h"
 #include "common.h"
+#include "shadelab/core/text.h"
 #include "shadelab/brdf/fresnel.h"
 #include "shadelab/brdf/fresnel_materials.h"
 #include "shadelab/core/constants.h"
@@ -87,9 +88,19 @@ py::object convert(py::handle value, const std::string& from, const std::string&
   if (!std::isfinite(cone_deg) || cone_deg <= 0.0 || cone_deg > 180.0) {
     fail(fmt::format("cone_deg: {} is out of range (0, 180] degrees", cone_deg));
   }
+  for (const auto& [name, unit] : {std::pair<const char*, const std::string*>{"from_unit", &from}, {"to_unit", &to}}) {
+    if (find_light_unit(*unit) == nullptr) {
+      fail(std::string(name) + ": unknown unit '" + printable(*unit) + "' (units: light_units())");
+    }
+  }
   const Rgb in = v.size() == 3 ? Rgb{v[0], v[1], v[2]} : Rgb::gray(v[0]);
   // cone_deg is the half-angle of a spot light's outer cone; 180 degrees is the whole sphere (as --cone).
   const Rgb out = unwrap(convert_light(in, from, to, std::max(-1.0, std::cos(deg_to_rad(cone_deg)))));
+  // A finite value whose conversion overflows is bad input, as the CLI says (issue 40, finding 8), not inf.
+  if (!std::isfinite(out.r) || !std::isfinite(out.g) || !std::isfinite(out.b)) {
+    fail(fmt::format("value: {} {} overflows when converted to {} (the result exceeds the largest double, about "
+                     "1.8e308)", v.size() == 1 ? number_text(v[0]) : fmt::format("{},{},{}", v[0], v[1], v[2]), from, to));
+  }
   if (v.size() == 1) {
     if (scalar) return py::float_(out.r);
     py::array_t<double> a(1);

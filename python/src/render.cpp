@@ -5,6 +5,11 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <climits>
 #include <cmath>
 #include <filesystem>
@@ -19,51 +24,6 @@
 namespace shadelab::python {
 
 namespace {
-
-constexpr int max_nesting = 64;
-
-// A Python object as JSON, for parse_scene. What JSON cannot hold (a non-finite number, a key that is not
-// a string, another type, a cycle) is an error naming its JSON pointer, as the scene parser names fields.
-nlohmann::json to_json(py::handle obj, const std::string& pointer, int depth) {
-  const std::string where = "scene: " + (pointer.empty() ? std::string("/") : pointer) + ": ";
-  if (depth > max_nesting) fail(where + "nested deeper than " + std::to_string(max_nesting) + " levels");
-  if (obj.is_none()) return nullptr;
-  if (py::isinstance<py::array>(obj) && py::reinterpret_borrow<py::array>(obj).ndim() == 0) {
-    return to_json(obj.attr("item")(), pointer, depth + 1);  // a NumPy 0-d array: its Python scalar
-  }
-  if (py::isinstance<py::bool_>(obj)) return obj.cast<bool>();
-  if (py::isinstance<py::str>(obj)) return obj.cast<std::string>();
-  if (PyIndex_Check(obj.ptr())) {  // int and NumPy integers
-    const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(obj.ptr()));
-    int overflow = 0;
-    const long long v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
-    if (overflow != 0) fail(where + "the integer " + py::str(obj).cast<std::string>() + " is too large");
-    return v;
-  }
-  if (PyFloat_Check(obj.ptr()) || (py::hasattr(obj, "__float__") && !PySequence_Check(obj.ptr()))) {
-    const double v = py::float_(py::reinterpret_borrow<py::object>(obj)).cast<double>();
-    if (!std::isfinite(v)) fail(where + fmt::format("{} is not a finite number", v));
-    return v;
-  }
-  if (py::isinstance<py::dict>(obj)) {
-    nlohmann::json j = nlohmann::json::object();
-    for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(obj)) {
-      if (!py::isinstance<py::str>(key)) fail(where + "the key " + py::repr(key).cast<std::string>() + " is not a string");
-      const std::string k = key.cast<std::string>();
-      std::string escaped;  // RFC 6901: ~ -> ~0, / -> ~1
-      for (char c : k) escaped += c == '~' ? std::string("~0") : (c == '/' ? std::string("~1") : std::string(1, c));
-      j[k] = to_json(value, pointer + "/" + escaped, depth + 1);
-    }
-    return j;
-  }
-  if (PySequence_Check(obj.ptr())) {
-    nlohmann::json j = nlohmann::json::array();
-    const py::sequence seq = py::reinterpret_borrow<py::sequence>(obj);
-    for (std::size_t i = 0; i < seq.size(); ++i) j.push_back(to_json(seq[i], pointer + "/" + std::to_string(i), depth + 1));
-    return j;
-  }
-  fail(where + "a " + py::str(py::type::of(obj).attr("__name__")).cast<std::string>() + " is not a JSON value");
-}
 
 Scene load(py::handle scene, py::handle base_dir) {
   if (scene.is_none()) return default_scene();
@@ -80,7 +40,7 @@ Scene load(py::handle scene, py::handle base_dir) {
     fail("scene: expected a path, a dict in the scene format or None, got " +
          py::str(py::type::of(scene).attr("__name__")).cast<std::string>());
   }
-  const nlohmann::json doc = to_json(scene, "", 0);
+  const nlohmann::json doc = scene_dict_json(scene);
   const std::filesystem::path base = base_dir.is_none() ? std::filesystem::current_path()
                                                         : std::filesystem::path(path_text(base_dir));
   Result<Scene> r = make_error("");
@@ -131,23 +91,50 @@ py::object render(py::handle scene_obj, py::handle spp_obj, py::handle threads_o
   go.threads = threads;
   if (spp != -1) go.spp = spp;
 
-  // Ctrl-C: checked after each pass; the render stops and KeyboardInterrupt is raised.
+  // Ctrl-C (and any other signal whose Python handler raises): the render runs on a worker thread while this
+  // thread, without the GIL, wakes every 20 ms to run Python's signal handlers (PyErr_CheckSignals; they run
+  // only on the main thread, elsewhere it returns 0). A handler that raises sets `cancel`, which both
+  // renderers check before each tile (RenderOptions::abort, GameOptions::cancel); the
+  // exception is then raised here. The GIL is free for other Python threads all the while.
   std::atomic<bool> cancel{false};
-  bool interrupted = false;
-  ro.cancel = &cancel;
-  ro.progress = [&](double, int) {
-    py::gil_scoped_acquire acquire;
-    if (PyErr_CheckSignals() != 0) {
-      interrupted = true;
-      cancel.store(true);
-    }
-  };
+  ro.abort = &cancel;
+  go.cancel = &cancel;
   Result<RenderResult> result = make_error("");
+  bool interrupted = false;
+  std::exception_ptr failure;
   {
     py::gil_scoped_release release;
-    result = mode == "game" ? render_game(scene, go) : render_scene(scene, ro);
+    std::mutex m;
+    std::condition_variable cv;
+    bool done = false;
+    std::thread worker([&] {
+      try {
+        result = mode == "game" ? render_game(scene, go) : render_scene(scene, ro);
+      } catch (...) {
+        failure = std::current_exception();  // std::bad_alloc: MemoryError once the GIL is back
+      }
+      const std::lock_guard<std::mutex> lock(m);
+      done = true;
+      cv.notify_one();
+    });
+    std::unique_lock<std::mutex> lock(m);
+    while (!cv.wait_for(lock, std::chrono::milliseconds(20), [&] { return done; })) {
+      if (interrupted) continue;
+      lock.unlock();
+      {
+        py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) {
+          interrupted = true;  // the handler's exception stays set on this thread until it is raised below
+          cancel.store(true);
+        }
+      }
+      lock.lock();
+    }
+    lock.unlock();
+    worker.join();
   }
   if (interrupted) throw py::error_already_set();
+  if (failure) std::rethrow_exception(failure);
   RenderResult r = unwrap(std::move(result), scene.source + ": ");
   if (!aov) return image_array(std::move(r.beauty));
   py::dict d;
@@ -177,8 +164,9 @@ format (docs/scene-format.md; relative file names resolve against base_dir, defa
 or None for the built-in default scene. spp, threads (0: all cores), seed and max_depth override the scene's
 settings. mode='reference' is the path tracer (sampling: mis, brdf or light); mode='game' shades as a game
 engine does. The image is the same for any thread count. aov=True returns a dict with beauty, albedo,
-normal and depth images (reference mode) and spp, rays, seconds. Ctrl-C stops after the current pass and
-raises KeyboardInterrupt; the GIL is released while rendering.)");
+normal and depth images (reference mode) and spp, rays, seconds. Ctrl-C stops the render within a tile (16 x 16
+pixels) and raises KeyboardInterrupt. The GIL is
+released while rendering: other Python threads run, and renders in several threads run at once.)");
 }
 
 }  // namespace shadelab::python

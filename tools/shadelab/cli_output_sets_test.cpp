@@ -230,4 +230,25 @@ TEST(CliOutputSets, OverflowingLightConversionIsAnError) {
   EXPECT_EQ(ok.code, 0) << ok.err;
 }
 
+// Messages that named the wrong thing (issue 40, finding 8): an unknown unit was "light: unknown unit 'x'"
+// whichever option gave it; a bad --ibl file of shader verify was said as "--ibl: bake ibl FILE: ...", a
+// command the user never typed.
+TEST(CliOutputSets, BadUnitsAndIblFilesNameTheirOption) {
+  const auto one_line = [](const shadelab::testing::CliRun& r) {
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    return r.err.rfind("shadelab: ", 0) == 0 ? r.err.substr(10, r.err.size() - 11) : r.err;
+  };
+  EXPECT_EQ(one_line(run("light 1 --from x --to lux")), "--from: unknown unit 'x' (units: shadelab light --list)");
+  EXPECT_EQ(one_line(run("light 1 --from game --to luxx --json")),
+            "--to: unknown unit 'luxx' (units: shadelab light --list)");
+  const fs::path dir = fresh_dir("ibl_message");
+  const fs::path not_an_image = dir / "notes.txt";
+  std::ofstream(not_an_image) << "not an image\n";
+  const std::string line = one_line(run("shader verify ggx --lang glsl --ibl " + not_an_image.string()));
+  EXPECT_EQ(line.rfind("--ibl: ", 0), 0u) << line;
+  EXPECT_EQ(line.find("bake ibl"), std::string::npos) << line;
+  EXPECT_NE(line.find(not_an_image.string()), std::string::npos) << line;
+}
+
 }  // namespace

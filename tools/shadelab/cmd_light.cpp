@@ -7,9 +7,11 @@
 #include <fmt/core.h>
 
 #include <cmath>
+#include <utility>
 
 #include "cli_common.h"
 #include "shadelab/core/constants.h"
+#include "shadelab/core/text.h"
 #include "shadelab/light/units.h"
 
 namespace shadelab::cli {
@@ -44,6 +46,12 @@ void run_light(const LightOptions& o) {
   }
   if (!std::isfinite(o.cone_deg) || o.cone_deg <= 0.0 || o.cone_deg > 180.0) {
     throw UsageError(fmt::format("--cone: {} is out of range (0, 180] degrees", o.cone_deg));
+  }
+  // Each unit named by its option (the library's line says only "light: unknown unit").
+  for (const auto& [option, unit] : {std::pair<const char*, const std::string*>{"--from", &o.from}, {"--to", &o.to}}) {
+    if (find_light_unit(*unit) == nullptr) {
+      throw UsageError(std::string(option) + ": unknown unit '" + printable(*unit) + "' (units: shadelab light --list)");
+    }
   }
   const Rgb in = nums->size() == 3 ? Rgb{(*nums)[0], (*nums)[1], (*nums)[2]} : Rgb::gray((*nums)[0]);
   // --cone is the half-angle of the outer cone; 180 degrees is the whole sphere, a point light.

@@ -89,7 +89,9 @@ void run_verify(const ShaderOptions& o, const std::string& model, bool ibl, bool
       auto run = unwrap(shaders::run_process({"/proc/self/exe", "bake", "ibl", o.ibl, "--out-dir", out}, 600.0));
       if (run.exit_code != 0) {
         const std::string why = run.err.substr(0, run.err.find('\n'));
-        if (run.exit_code == 2) throw UsageError("--ibl: bake ibl " + o.ibl + ": " + (why.rfind("shadelab: ", 0) == 0 ? why.substr(10) : why));
+        // The bake's own line names the file and what is wrong with it: said as --ibl's (not as a `bake ibl`
+        // command the user never typed).
+        if (run.exit_code == 2) throw UsageError("--ibl: " + (why.rfind("shadelab: ", 0) == 0 ? why.substr(10) : why));
         throw std::runtime_error("--ibl: bake ibl " + o.ibl + " failed (exit code " + std::to_string(run.exit_code) + "): " + why);
       }
       v.ibl_dir = out;

@@ -416,6 +416,7 @@ Result<RenderResult> render_game_with(const Scene& scene, const GameOptions& opt
   if (auto limits = check_scene_limits(scene); !limits) return limits.error();
   GameShader shader(scene, options, baked);
   if (auto ok = shader.prepare(); !ok) return ok.error();
+  const auto cancelled = [&] { return options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed); };
   const int w = scene.camera.width;
   const int h = scene.camera.height;
   const CameraModel camera(scene.camera);
@@ -427,6 +428,7 @@ Result<RenderResult> render_game_with(const Scene& scene, const GameOptions& opt
   std::atomic<std::uint64_t> nonfinite{0};
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
+      if (cancelled()) return;
       for (int y = r.rows().begin(); y != r.rows().end(); ++y) {
         for (int x = r.cols().begin(); x != r.cols().end(); ++x) {
           Rgb sum;
@@ -446,6 +448,7 @@ Result<RenderResult> render_game_with(const Scene& scene, const GameOptions& opt
     });
   });
   result.stats.spp_done = spp_side * spp_side;
+  result.stats.cancelled = cancelled();
   result.stats.nonfinite_samples = nonfinite.load();
   result.stats.camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(spp_side * spp_side);
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -37,6 +37,8 @@
 // that the agreement test can fail.
 #pragma once
 
+#include <atomic>
+
 #include <memory>
 
 #include "shadelab/envmap/specular/dfg.h"
@@ -97,6 +99,9 @@ struct GameOptions {
   int dfg_size = 64;          // the split sum's DFG table (dfg.h), baked once per process per size
   GameSplitSumLookup split_sum_lookup = GameSplitSumLookup::lobes;
   int split_sum_taps = 64;  // split_sum_lookup filtered: taps per pixel, in [1, 1024]
+  // Checked after the environment bake and before each 16 x 16 tile: once set, the tiles not yet begun are
+  // skipped (black) and RenderStats::cancelled is true (the Python module's Ctrl-C, render.cpp).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 Result<RenderResult> render_game(const Scene& scene, const GameOptions& options = {});

@@ -517,6 +517,7 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size()), [&](const tbb::blocked_range<std::size_t>& r) {
         Counters counters;
         for (std::size_t k = r.begin(); k != r.end(); ++k) {
+          if (options.abort != nullptr && options.abort->load(std::memory_order_relaxed)) break;
           const int tile = tiles[k];
           const int x0 = (tile % tiles_x) * tile_size;
           const int y0 = (tile / tiles_x) * tile_size;
@@ -565,6 +566,7 @@ Result<RenderResult> render_scene(const Scene& scene, const RenderOptions& optio
         nonfinite.fetch_add(counters.nonfinite, std::memory_order_relaxed);
       });
     });
+    if (options.abort != nullptr && options.abort->load()) return make_error("render stopped");
     done = s1;
     if (options.progress) options.progress(static_cast<double>(done - first_sample) / std::max(1, samples), done - first_sample);
   }

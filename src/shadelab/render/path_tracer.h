@@ -66,6 +66,9 @@ struct RenderOptions {
   bool aovs = false;   // albedo, normal and depth of the first hit
   std::function<void(double fraction, int spp_done)> progress;  // after each pass, on the calling thread
   const std::atomic<bool>* cancel = nullptr;  // checked between passes; the finished passes are kept
+  // Checked before each tile of each pass: once set, the render stops within a tile and returns the error
+  // "render stopped" with no image (the Python module's Ctrl-C: a pass of a large image takes seconds).
+  const std::atomic<bool>* abort = nullptr;
 };
 
 struct RenderStats {

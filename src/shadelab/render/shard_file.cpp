@@ -17,6 +17,7 @@
 #include <map>
 #include <variant>
 
+#include "shadelab/core/text.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/sampling/owen.h"
 
@@ -209,7 +210,11 @@ class SceneHasher {
   Hasher& m_h;
 };
 
-Error file_error(const fs::path& path, const std::string& why) { return make_error("'" + path.string() + "': " + why); }
+// OpenEXR's messages quote the file's own bytes (a channel name holding \x01: the shard fuzzer's finding of
+// issue 40): the reason is made one printable line (core/text.h) like every other message.
+Error file_error(const fs::path& path, const std::string& why) {
+  return make_error("'" + path.string() + "': " + printable(why, max_message_bytes));
+}
 
 class MemoryStream final : public Imf::OStream {
  public:

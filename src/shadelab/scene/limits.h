@@ -57,6 +57,11 @@ inline constexpr std::uintmax_t max_mesh_file_bytes = 1ULL << 30;       // an OB
 inline constexpr std::uintmax_t max_material_file_bytes = 16ULL << 20;  // an OBJ's mtllib
 // glTF: nodes visited through the scene's hierarchy (a DAG instances a node once per path to it).
 inline constexpr std::uint64_t max_gltf_node_instances = 1'000'000;
+// glTF: values in its JSON (each object, array and element; counted by brackets and commas before tinygltf
+// parses). tinygltf builds a structure of some hundred bytes for each (an empty node 575 bytes, counted as
+// two values with its comma): 499,000 empty nodes took 294 MB, where a 1 GiB file of them asked for some
+// 200 GB. A real glTF's JSON holds thousands of values (its data is in buffers).
+inline constexpr std::uint64_t max_gltf_json_values = 1'000'000;
 // Triangles of all meshes of a scene together (each instance counted): about 1 GiB of vertex and index data.
 inline constexpr std::uint64_t max_scene_triangles = 10'000'000;
 

@@ -88,10 +88,16 @@ Result<std::string> read_text(const std::filesystem::path& path, std::uintmax_t 
   return text;
 }
 
-// The nesting depth of JSON text ([ and { outside strings), counted only up to `limit` + 1.
-std::size_t json_depth(std::string_view text, std::size_t limit) {
+// The nesting depth of JSON text ([ and { outside strings) and its values (each [ and { and each comma
+// outside strings: at least the number of values tinygltf builds a structure for), the scan stopping as
+// soon as the depth passes depth_limit or the values pass value_limit.
+struct JsonShape {
   std::size_t depth = 0;
-  std::size_t deepest = 0;
+  std::uint64_t values = 0;
+};
+JsonShape json_shape(std::string_view text, std::size_t depth_limit, std::uint64_t value_limit) {
+  std::size_t depth = 0;
+  JsonShape shape;
   bool in_string = false;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
@@ -104,13 +110,15 @@ std::size_t json_depth(std::string_view text, std::size_t limit) {
     } else if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
-      deepest = std::max(deepest, ++depth);
-      if (deepest > limit) return deepest;
+      shape.depth = std::max(shape.depth, ++depth);
+      if (shape.depth > depth_limit || ++shape.values > value_limit) return shape;
+    } else if (c == ',') {
+      if (++shape.values > value_limit) return shape;
     } else if ((c == ']' || c == '}') && depth > 0) {
       --depth;
     }
   }
-  return deepest;
+  return shape;
 }
 
 Error mesh_error(const std::filesystem::path& path, const std::string& message) {
@@ -704,9 +712,16 @@ Result<GltfRead> read_gltf_parts(const std::filesystem::path& path, bool split) 
   const bool binary = lower_extension(path) == ".glb";
   auto bytes = read_text(path, max_mesh_file_bytes);
   if (!bytes) return mesh_error(path, "cannot read glTF: " + bytes.error().message);
-  // tinygltf turns JSON "extras" into its own values by recursion: bound the nesting before it parses.
-  if (json_depth(gltf_json(*bytes, binary), max_json_depth) > max_json_depth) {
+  // tinygltf turns JSON "extras" into its own values by recursion: bound the nesting before it parses. It
+  // also builds a structure of some hundred bytes for each value (575 bytes an empty node, 900 an
+  // accessor): bound their number too, or a 1 GiB file of "{}," asks for 200 GB (issue 40).
+  const JsonShape shape = json_shape(gltf_json(*bytes, binary), max_json_depth, max_gltf_json_values);
+  if (shape.depth > max_json_depth) {
     return mesh_error(path, "JSON nested deeper than " + std::to_string(max_json_depth) + " levels");
+  }
+  if (shape.values > max_gltf_json_values) {
+    return mesh_error(path, "the glTF JSON holds more than " + std::to_string(max_gltf_json_values) +
+                                " values (objects, arrays and their elements), more than a mesh file may");
   }
   tinygltf::Model model;
   std::string err;

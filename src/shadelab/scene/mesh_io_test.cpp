@@ -1,8 +1,10 @@
 #include "shadelab/scene/mesh_io.h"
+#include "shadelab/scene/limits.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -436,6 +438,33 @@ TEST(MeshIoLimits, NodeDagInstancesAreBounded) {
   ASSERT_FALSE(mesh);
   EXPECT_EQ(mesh.error().message.rfind(file.string() + ": ", 0), 0u) << mesh.error().message;
   EXPECT_NE(mesh.error().message.find("instances more than"), std::string::npos) << mesh.error().message;
+}
+
+// A glTF whose JSON arrays are huge (issue 40): tinygltf builds some 575 bytes for each empty node, so a
+// 1 GiB file of "{}," asked for 200 GB (an abort through std::bad_alloc, or the OOM killer). The JSON's
+// values are counted before tinygltf parses (limits.h max_gltf_json_values): one line naming the file, at
+// once. A file just inside the bound loads.
+TEST(MeshIoLimits, GltfJsonValuesAreBoundedBeforeParsing) {
+  const fs::path dir = temp_dir("many_values");
+  std::vector<int> a;
+  const GltfWriter w = triangle(k_ushort, &a);
+  const auto write = [&](std::size_t empty_nodes, const std::string& name) {
+    json nodes = json::array({{{"mesh", 0}}});
+    for (std::size_t i = 0; i < empty_nodes; ++i) nodes.push_back(json::object());
+    const fs::path file = dir / name;
+    w.write_gltf(file, w.document(nodes, json::array({{{"primitives", {primitive(a)}}}}), json::array({{{"nodes", {0}}}})));
+    return file;
+  };
+  const fs::path big = write(max_gltf_json_values / 2 + 1, "big.gltf");  // each "{}," counts two
+  const auto t0 = std::chrono::steady_clock::now();
+  auto mesh = load_gltf(big);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.error().message, big.string() + ": the glTF JSON holds more than 1000000 values (objects, arrays "
+                                                 "and their elements), more than a mesh file may");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 0.5);  // nothing parsed
+  auto ok = load_gltf(write(1000, "fine.gltf"));
+  ASSERT_TRUE(ok) << ok.error().message;
+  EXPECT_EQ(ok->positions.size(), 3u);
 }
 
 // An index accessor whose count is near 2^63 wrapped the bounds check (stride x count overflowed) and threw
