@@ -22,6 +22,14 @@ Vec3 below(double theta_deg, double phi_deg) {
   return w;
 }
 
+// The quadrature of the density and albedo integrals below: 1e-7 relative, room for the narrow lobes.
+QuadratureOptions fine_quadrature() {
+  QuadratureOptions o;
+  o.rel_tol = 1e-7;
+  o.max_subdivisions = 20000;
+  return o;
+}
+
 // Its reflection is the registry's ggx with the exact dielectric Fresnel, no diffuse, height-correlated G2:
 // the kernel ggx.sl, an independent text.
 TEST(RoughDielectric, ReflectionIsTheGgxModelWithTheDielectricFresnel) {
@@ -65,9 +73,7 @@ TEST(RoughDielectric, TransmissionObeysGeneralizedReciprocity) {
 // surface, or refract it back above: single scattering's loss, about 2% at alpha 0.5 from outside and 20%
 // from inside), from above and from below, where total internal reflection turns transmission into reflection.
 TEST(RoughDielectric, PdfIntegratesToTheShareOfSamplesReturned) {
-  QuadratureOptions o;
-  o.rel_tol = 1e-7;
-  o.max_subdivisions = 20000;
+  const QuadratureOptions o = fine_quadrature();
   for (double alpha : {0.1, 0.5}) {
     for (double eta : {1.5, 1.0 / 1.5}) {
       const RoughDielectric coat(eta, alpha);
@@ -99,9 +105,7 @@ TEST(RoughDielectric, PdfIntegratesToTheShareOfSamplesReturned) {
 // density over the upper hemisphere, and the mean sample weight (f |cos| / pdf) matches the quadrature of
 // f |cos| (the interface's albedo), for both transports.
 TEST(RoughDielectric, SamplesMatchTheirDensityAndTheirWeights) {
-  QuadratureOptions o;
-  o.rel_tol = 1e-7;
-  o.max_subdivisions = 20000;
+  const QuadratureOptions o = fine_quadrature();
   for (double theta : {20.0, 70.0}) {
     for (double eta : {1.5, 1.0 / 1.5}) {
       const RoughDielectric coat(eta, 0.35);

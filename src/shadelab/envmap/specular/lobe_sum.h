@@ -165,9 +165,9 @@ SHADELAB_INLINE void convolve_group(const Input& in, const Lobe& lobe, const Vec
     }
   }
   if constexpr (!Lobe::row_sums_in_double) {
-    total_w = hsum(acc_w);
+    total_w = static_cast<double>(hsum(acc_w));
     for (int o = 0; o < M; ++o)
-      for (int c = 0; c < 3; ++c) total[o][c] = hsum(acc[o][c]);
+      for (int c = 0; c < 3; ++c) total[o][c] = static_cast<double>(hsum(acc[o][c]));
   }
   for (int o = 0; o < M; ++o) {
     // A lobe narrower than the texels: the texel each direction points at.
