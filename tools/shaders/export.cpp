@@ -240,6 +240,7 @@ Result<std::string> kernel_section(const std::vector<std::string>& names, Lang l
     const std::string guard = "SHADELAB_KERNEL_" + upper_identifier(file.name);
     out += "#ifndef " + guard + "\n#define " + guard + "\n// ---- kernels/" + file.name + "\n";
     if (file.name == kGgxEnergyTableFile) out += ggx_energy_block_declaration(lang);
+    if (file.name == kSheenEnergyTableFile) out += sheen_energy_block_declaration(lang);
     out += *text;
     if (!out.empty() && out.back() != '\n') out += "\n";
     out += "#endif  // " + guard + "\n\n";
@@ -298,10 +299,11 @@ Result<ShaderExport> export_model(std::string_view model, const ParamAssignments
   auto kernels = kernel_section(names, lang);
   if (!kernels) return kernels.error();
   for (std::size_t f : lib.closure(names)) {
-    if (lib.files()[f].name == kGgxEnergyTableFile) {
-      ex.tables_block = kGgxEnergyBlock;
-      ex.tables_data = ggx_energy_block_data();
-    }
+    const std::string& name = lib.files()[f].name;
+    if (name != kGgxEnergyTableFile && name != kSheenEnergyTableFile) continue;
+    if (!ex.tables_block.empty()) throw std::logic_error("model " + info->name + " reads two tables blocks");
+    ex.tables_block = name == kGgxEnergyTableFile ? kGgxEnergyBlock : kSheenEnergyBlock;
+    ex.tables_data = name == kGgxEnergyTableFile ? ggx_energy_block_data() : sheen_energy_block_data();
   }
 
   std::string& s = ex.text;
@@ -321,10 +323,12 @@ Result<ShaderExport> export_model(std::string_view model, const ParamAssignments
       "translated token by token (docs/shaders.md).");
   if (lang == Lang::essl) s += "// GLSL ES: use with `precision highp float;` (mediump is too coarse for f_r).\n";
   if (!ex.tables_block.empty()) {
-    s += comment_block("Tables: this model reads the GGX energy tables from the uniform block " + ex.tables_block +
+    s += comment_block(std::string("Tables: this model reads ") +
+                       (ex.tables_block == kGgxEnergyBlock ? "the GGX energy tables" : "the sheen albedo table") +
+                       " from the uniform block " + ex.tables_block +
                        " (declared with the kernels below); fill it once with the " +
                        std::to_string(ex.tables_data.size()) + " bytes `shadelab shader " + info->name +
-                       " --lang " + lang_name(lang) + " --tables-out FILE` writes (the same for every model).");
+                       " --lang " + lang_name(lang) + " --tables-out FILE` writes (the same for every model that reads it).");
   }
   s += "//\n// Entry points:\n";
   s += "//   " + v3 + " " + ex.entry + "(" + v3 + " wi, " + v3 + " wo)  f_r\n";

@@ -215,31 +215,69 @@ std::vector<std::uint8_t> ggx_energy_block_data() {
   return bytes;
 }
 
-std::string ggx_energy_block_declaration(Lang lang) {
-  const std::string n = std::to_string(kGgxEnergyVec4s);
+namespace {
+
+// A uniform block of n vec4 named `block` with the one member `member` (std140), declared for lang.
+std::string table_block_declaration(Lang lang, const std::string& what, const char* block, const char* member, int vec4s) {
+  const std::string n = std::to_string(vec4s);
   std::string s =
-      "// The GGX energy tables as a uniform block the application fills once: " + n +
-      " vec4 (std140, " + std::to_string(16 * kGgxEnergyVec4s) +
-      " bytes), the bytes `shadelab shader MODEL --tables-out FILE` writes (docs/shaders.md).\n";
+      "// " + what + " as a uniform block the application fills once: " + n + " vec4 (std140, " +
+      std::to_string(16 * vec4s) + " bytes), the bytes `shadelab shader MODEL --tables-out FILE` writes (docs/shaders.md).\n";
   if (lang == Lang::hlsl) {
     s += "// Define SHADELAB_TABLES_LAYOUT before this file to bind it, e.g. [[vk::binding(3)]] (or add a register).\n"
          "#ifndef SHADELAB_TABLES_LAYOUT\n#define SHADELAB_TABLES_LAYOUT\n#endif\n"
-         "SHADELAB_TABLES_LAYOUT cbuffer " + std::string(kGgxEnergyBlock) + " {\n  float4 " + kGgxEnergyMember + "[" + n +
-         "];\n};\n";
+         "SHADELAB_TABLES_LAYOUT cbuffer " + std::string(block) + " {\n  float4 " + member + "[" + n + "];\n};\n";
   } else {
     s += "// Define SHADELAB_TABLES_LAYOUT before this file to add a binding, e.g. layout(std140, binding = 3).\n"
          "#ifndef SHADELAB_TABLES_LAYOUT\n#define SHADELAB_TABLES_LAYOUT layout(std140)\n#endif\n"
-         "SHADELAB_TABLES_LAYOUT uniform " + std::string(kGgxEnergyBlock) + " {\n  vec4 " + kGgxEnergyMember + "[" + n +
-         "];\n};\n";
+         "SHADELAB_TABLES_LAYOUT uniform " + std::string(block) + " {\n  vec4 " + member + "[" + n + "];\n};\n";
   }
   return s;
+}
+
+std::vector<std::uint8_t> float_bytes(std::vector<float> v) {
+  std::vector<std::uint8_t> bytes(v.size() * sizeof(float));
+  std::memcpy(bytes.data(), v.data(), bytes.size());  // little-endian, as every GPU API uploads it
+  return bytes;
+}
+
+}  // namespace
+
+std::string ggx_energy_block_declaration(Lang lang) {
+  return table_block_declaration(lang, "The GGX energy tables", kGgxEnergyBlock, kGgxEnergyMember, kGgxEnergyVec4s);
+}
+
+KernelFile sheen_energy_table_file() {
+  // As ggx_energy_table_file: the C++ fetch (kernels.h) reads the table tables.cpp computes at first use; a shader
+  // reads the same numbers from the uniform block sheen_energy_block_declaration declares.
+  std::string text =
+      "// sheen_energy_tables.sl, written by the shader exporter (tools/shaders/kernel_library.cpp): the texel\n"
+      "// fetch of sheen.sl from the uniform block " +
+      std::string(kSheenEnergyBlock) + " (vec4 " + kSheenEnergyMember + "[" + std::to_string(kSheenEnergyVec4s) +
+      "]: the " + std::to_string(kSheenEnergyTexels) + " texels of E(mu, r), charlie then ashikhmin, four to a vec4).\n";
+  text += "inline real sheen_energy_texel(int v, int row, int col) {\n  int i = (v * 64 + row) * 32 + col;\n  return " +
+          std::string(kSheenEnergyMember) + "[i / 4][i % 4];\n}\n";
+  return {kSheenEnergyTableFile, text};
+}
+
+std::vector<std::uint8_t> sheen_energy_block_data() {
+  std::vector<float> v;
+  v.reserve(4 * kSheenEnergyVec4s);
+  for (int i = 0; i < kSheenEnergyTexels; ++i) v.push_back(static_cast<float>(kernel::sheen_energy_texels()[i]));
+  return float_bytes(std::move(v));
+}
+
+std::string sheen_energy_block_declaration(Lang lang) {
+  return table_block_declaration(lang, "The sheen lobe's albedo table", kSheenEnergyBlock, kSheenEnergyMember,
+                                 kSheenEnergyVec4s);
 }
 
 const KernelLibrary& KernelLibrary::embedded() {
   static const KernelLibrary lib = [] {
     std::vector<KernelFile> files;
     for (const auto& f : embedded_support_files()) files.push_back(f);
-    files.push_back(ggx_energy_table_file());  // before ggx_energy.sl, which fetches from it
+    files.push_back(ggx_energy_table_file());    // before ggx_energy.sl, which fetches from it
+    files.push_back(sheen_energy_table_file());  // before sheen.sl
     for (const auto& f : embedded_kernel_files()) files.push_back(f);
     auto parsed = parse(std::move(files));
     if (!parsed) throw std::logic_error("embedded kernels: " + parsed.error().message);

@@ -43,6 +43,17 @@ inline constexpr const char* kGgxEnergyTableFile = "ggx_energy_tables.sl";
 KernelFile ggx_energy_table_file();
 std::vector<std::uint8_t> ggx_energy_block_data();
 std::string ggx_energy_block_declaration(Lang lang);
+// The sheen lobe's albedo table (kernels/sheen.sl, tables.h SheenEnergyTable) the same way: a uniform block of vec4
+// holding the 2 x 64 x 32 texels (charlie, then ashikhmin), four to a vec4 (16384 bytes: WebGL 2's and GLSL's
+// smallest allowed MAX_UNIFORM_BLOCK_SIZE), fetched by sheen_energy_texel. A shader reads one tables block at most.
+inline constexpr const char* kSheenEnergyBlock = "ShadelabSheenEnergy";
+inline constexpr const char* kSheenEnergyMember = "shadelab_sheen_energy";
+inline constexpr int kSheenEnergyTexels = 2 * 64 * 32;
+inline constexpr int kSheenEnergyVec4s = kSheenEnergyTexels / 4;
+inline constexpr const char* kSheenEnergyTableFile = "sheen_energy_tables.sl";
+KernelFile sheen_energy_table_file();
+std::vector<std::uint8_t> sheen_energy_block_data();
+std::string sheen_energy_block_declaration(Lang lang);
 
 enum class FieldType { real, integer, rgb, vec3, boolean };
 

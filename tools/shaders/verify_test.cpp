@@ -98,6 +98,12 @@ const std::vector<std::pair<std::string, ParamAssignments>>& variants() {
     out.push_back({"ggx", {{"f", "none"}, {"ks", "0.9,0.7,0.5"}, {"alpha", "0.1"}}});
     out.push_back({"filament", {{"diffuse", "burley"}, {"energy_compensation", "off"}, {"metallic", "0.3"}}});
     out.push_back({"filament", {{"metallic", "1"}, {"base_color", "0.95,0.64,0.54"}, {"perceptual_roughness", "0.9"}}});
+    // glTF: every extension's branch, both sheen visibilities (the sheen table's uniform block).
+    out.push_back({"gltf", {{"metallic", "0"}, {"base_color", "0.8,0.4,0.2"}, {"roughness", "0.5"}, {"sheen_color", "0.9,0.5,0.2"},
+                            {"sheen_roughness", "0.4"}, {"clearcoat", "0.7"}, {"clearcoat_roughness", "0.2"},
+                            {"anisotropy_strength", "0.6"}, {"anisotropy_rotation", "0.8"}}});
+    out.push_back({"gltf", {{"metallic", "0.3"}, {"sheen_color", "0.5"}, {"sheen_roughness", "0.15"}, {"sheen_visibility", "ashikhmin"},
+                            {"specular", "0.5"}, {"specular_color", "2,1,0.5"}, {"ior", "1.33"}}});
     return out;
   }();
   return v;

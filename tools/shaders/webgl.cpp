@@ -128,7 +128,8 @@ std::string page(const std::string& programs_json, const std::string& wi_b64, co
           gl.uniformBlockBinding(prog, index, 0); gl.bindBufferBase(gl.UNIFORM_BUFFER, 0, ubo);
         }
         const tbytes = bytes(p.tables);
-        const tindex = tbytes.length > 0 ? gl.getUniformBlockIndex(prog, ')" + std::string(kGgxEnergyBlock) + R"(') : gl.INVALID_INDEX;
+        let tindex = tbytes.length > 0 ? gl.getUniformBlockIndex(prog, ')" + std::string(kGgxEnergyBlock) + R"(') : gl.INVALID_INDEX;
+        if (tbytes.length > 0 && tindex === gl.INVALID_INDEX) tindex = gl.getUniformBlockIndex(prog, ')" + std::string(kSheenEnergyBlock) + R"(');
         if (tindex !== gl.INVALID_INDEX) {  // a shader of the user's (--source) may not read the tables
           const index = tindex;
           const tbo = gl.createBuffer(); gl.bindBuffer(gl.UNIFORM_BUFFER, tbo); gl.bufferData(gl.UNIFORM_BUFFER, tbytes, gl.STATIC_DRAW);

@@ -122,6 +122,16 @@ std::vector<ParamSet> param_sets() {
       extra = {{"kd", "0.1"}, {"alpha_x", "0.5"}, {"alpha_y", "0.05"}, {"f", "conductor"}, {"ior", "0.2,0.9,1.1"},
                {"k", "3.9,2.4,2.2"}, {"ms", "kulla-conty"}, {"g", "smith-separable"}};
     }
+    // glTF: a sharp anisotropic dielectric with the ashikhmin sheen; a rough coloured metal under a clearcoat with the
+    // charlie sheen; a specular-coloured dielectric (KHR_materials_specular, _ior).
+    if (m.name == "gltf") {
+      sharp = {{"metallic", "0"}, {"roughness", "0.2"}, {"anisotropy_strength", "0.8"}, {"anisotropy_rotation", "0.7"},
+               {"sheen_color", "0.9,0.6,0.3"}, {"sheen_roughness", "0.3"}, {"sheen_visibility", "ashikhmin"}};
+      rough = {{"base_color", "0.9,0.6,0.2"}, {"roughness", "0.8"}, {"clearcoat", "1"}, {"clearcoat_roughness", "0.1"},
+               {"sheen_color", "0.5,0.5,0.5"}, {"sheen_roughness", "0.8"}};
+      extra = {{"metallic", "0"}, {"base_color", "0.7,0.2,0.2"}, {"roughness", "0.5"}, {"ior", "1.33"},
+               {"specular", "0.6"}, {"specular_color", "2,1,0.5"}};
+    }
     if (m.name == "filament") extra = {{"diffuse", "burley"}, {"energy_compensation", "off"}, {"metallic", "0.5"}};
     // The layered ground truth: a near-smooth coat over a sharp conductor, a rough coat over the ggx base through
     // an absorbing slab (one walk per eval: each eval is a Monte Carlo estimate, and the suite evaluates millions).

@@ -20,6 +20,7 @@ std::span<const ModelInfo> brdf_models() {
       ggx_model(),
       burley_model(),
       filament_model(),
+      gltf_model(),
       layered_model(),
   };
   return models;

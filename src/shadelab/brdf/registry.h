@@ -67,6 +67,7 @@ ModelInfo wrapped_diffuse_model();
 ModelInfo ggx_model();
 ModelInfo burley_model();
 ModelInfo filament_model();
+ModelInfo gltf_model();
 ModelInfo layered_model();
 
 }  // namespace shadelab

@@ -608,7 +608,22 @@ Result<bool> check_palette_indices(const fs::path& path, const std::vector<unsig
   return true;
 }
 
-Result<Image> read_png(const fs::path& path, ReadInfo& info, std::uint64_t budget) {
+// code / (2^bits - 1): the linear tables of PngSamples::linear.
+const std::vector<float>& linear_code_table(int bits) {
+  static const std::vector<float> t8 = [] {
+    std::vector<float> t(256);
+    for (int k = 0; k < 256; ++k) t[static_cast<std::size_t>(k)] = static_cast<float>(k / 255.0);
+    return t;
+  }();
+  static const std::vector<float> t16 = [] {
+    std::vector<float> t(65536);
+    for (int k = 0; k < 65536; ++k) t[static_cast<std::size_t>(k)] = static_cast<float>(k / 65535.0);
+    return t;
+  }();
+  return bits == 8 ? t8 : t16;
+}
+
+Result<Image> read_png(const fs::path& path, ReadInfo& info, std::uint64_t budget, PngSamples png) {
   auto bytes = read_bytes(path);
   if (!bytes) {
     return bytes.error();
@@ -648,14 +663,16 @@ Result<Image> read_png(const fs::path& path, ReadInfo& info, std::uint64_t budge
       return read_error(path, "corrupt or truncated PNG file (" + stb_reason() + ")");
     }
     image = Image(w, h);
-    decode_srgb(pixels.get(), n, srgb16_to_linear_table().data(), image);
+    decode_srgb(pixels.get(), n, png == PngSamples::linear ? linear_code_table(16).data() : srgb16_to_linear_table().data(),
+                image);
   } else {
     std::unique_ptr<stbi_uc, StbiFree> pixels(stbi_load_from_memory(bytes->data(), size, &w, &h, &n, 0));
     if (!pixels) {
       return read_error(path, "corrupt or truncated PNG file (" + stb_reason() + ")");
     }
     image = Image(w, h);
-    decode_srgb(pixels.get(), n, srgb8_to_linear_table().data(), image);
+    decode_srgb(pixels.get(), n, png == PngSamples::linear ? linear_code_table(8).data() : srgb8_to_linear_table().data(),
+                image);
   }
   info.sample_type = sixteen ? "uint16" : "uint8";
   info.channels = n;
@@ -682,11 +699,18 @@ Result<std::vector<char>> encode_hdr(const Image& image, const fs::path& path) {
   return bytes;
 }
 
-Result<std::vector<char>> encode_png(const Image& image, const fs::path& path, double exposure) {
+Result<std::vector<char>> encode_png(const Image& image, const fs::path& path, double exposure, PngSamples png) {
   const double scale = std::exp2(exposure);  // exposure in stops: a factor of 2^exposure
   std::vector<std::uint8_t> codes(image.data.size());
-  std::transform(image.data.begin(), image.data.end(), codes.begin(),
-                 [scale](float v) { return linear_to_srgb8(static_cast<double>(v) * scale); });
+  if (png == PngSamples::linear) {
+    std::transform(image.data.begin(), image.data.end(), codes.begin(), [scale](float v) {
+      const double x = static_cast<double>(v) * scale;
+      return static_cast<std::uint8_t>(std::isfinite(x) ? std::lround(std::clamp(x, 0.0, 1.0) * 255.0) : 0);
+    });
+  } else {
+    std::transform(image.data.begin(), image.data.end(), codes.begin(),
+                   [scale](float v) { return linear_to_srgb8(static_cast<double>(v) * scale); });
+  }
   std::vector<char> bytes;
   if (stbi_write_png_to_func(append_bytes, &bytes, image.width, image.height, 3, codes.data(), image.width * 3) ==
       0) {
@@ -1304,6 +1328,10 @@ Result<Image> read_radiance_image(const fs::path& path, ReadInfo* info, std::uin
 }
 
 Result<Image> read_image(const fs::path& path, ReadInfo* info, std::uint64_t budget_bytes) {
+  return read_image(path, info, budget_bytes, PngSamples::srgb);
+}
+
+Result<Image> read_image(const fs::path& path, ReadInfo* info, std::uint64_t budget_bytes, PngSamples png) {
   const std::uint64_t budget = std::min(budget_bytes, image_read_budget_bytes);
   const Format format = format_of(path);
   if (format == Format::unknown) {
@@ -1339,7 +1367,7 @@ Result<Image> read_image(const fs::path& path, ReadInfo* info, std::uint64_t bud
         break;
       case Format::png:
         local.format = "png";
-        image = read_png(path, local, budget);
+        image = read_png(path, local, budget, png);
         break;
       case Format::unknown:
         break;
@@ -1400,7 +1428,7 @@ Result<std::vector<char>> encode_image(const Image& image, const fs::path& path,
       case Format::hdr:
         return encode_hdr(image, path);
       case Format::png:
-        return encode_png(image, path, options.exposure);
+        return encode_png(image, path, options.exposure, options.png_samples);
       case Format::unknown:
         break;
     }

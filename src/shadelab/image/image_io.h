@@ -69,11 +69,17 @@ struct ReadInfo {
   Texel first_negative;
 };
 
+// How a PNG's samples become values: decoded from sRGB (pictures: the default), or as stored, code / 255 or code /
+// 65535 (data such as the lookup tables engines ship linearly: `shadelab bake lut`, `audit-lut`).
+enum class PngSamples { srgb, linear };
+
 // Reads an image; `info`, when given, is filled on success.
 Result<Image> read_image(const std::filesystem::path& path, ReadInfo* info = nullptr);
 // The same with a smaller memory budget (at most image_read_budget_bytes): a scene gives each image what is
 // left of its own budget (scene/limits.h, max_scene_image_bytes).
 Result<Image> read_image(const std::filesystem::path& path, ReadInfo* info, std::uint64_t budget_bytes);
+// The same with a PNG's samples read as `png` says (the other formats are unaffected).
+Result<Image> read_image(const std::filesystem::path& path, ReadInfo* info, std::uint64_t budget_bytes, PngSamples png);
 
 // Lossy EXR compression (DWAA/DWAB, the Blender worlds) leaves small negative values around dark texels:
 // down to -0.025 of the map's mean value on blender-data's night.exr (-0.0057 and less on the seven others).
@@ -111,6 +117,8 @@ struct WriteOptions {
   ExrCompression exr_compression = ExrCompression::zip;
   // PNG only: pixels are multiplied by 2^exposure (stops) before clamping to [0, 1] and sRGB encoding.
   double exposure = 0.0;
+  // PNG only: linear writes round(clamp(v 2^exposure, 0, 1) 255) with no sRGB encoding (8-bit data textures).
+  PngSamples png_samples = PngSamples::srgb;
 };
 
 // Writes `bytes` to `path` atomically: to a new temporary file in the same directory (created exclusively,
@@ -157,8 +165,8 @@ Result<bool> check_exr_header(const std::filesystem::path& path, const char* who
 std::string exr_header_problem(const std::filesystem::path& path);
 
 // Writes `image` by extension: .exr (OpenEXR, R G B channels, options above), .hdr / .pic (Radiance RGBE;
-// negative and non-finite values are written as 0, as RGBE cannot hold them), .png (8-bit sRGB, exposure
-// applied, clamped to [0, 1], rounded to the nearest code, NaN -> 0). Returns true or an Error.
+// negative and non-finite values are written as 0, as RGBE cannot hold them), .png (8-bit sRGB, or linear codes
+// with png_samples = linear; exposure applied, clamped to [0, 1], rounded to the nearest code, NaN -> 0). Returns true or an Error.
 Result<bool> write_image(const Image& image, const std::filesystem::path& path, const WriteOptions& options = {});
 
 }  // namespace shadelab

@@ -20,3 +20,14 @@ inline vec3 half_vector(vec3 wi, vec3 wo) {
   h = h / len;
   return h.z < 0.0 ? -h : h;
 }
+
+// Catmull-Rom weight of the four samples p[-1], p[0], p[1], p[2] at t in [0, 1] (uniform knots): the
+// interpolation of the tables (ggx_energy.sl, sheen.sl).
+inline real catmull_rom_weight(int k, real t) {
+  real t2 = t * t;
+  real t3 = t2 * t;
+  if (k == 0) return -0.5 * t3 + t2 - 0.5 * t;
+  if (k == 1) return 1.5 * t3 - 2.5 * t2 + 1.0;
+  if (k == 2) return -1.5 * t3 + 2.0 * t2 + 0.5 * t;
+  return 0.5 * t3 - 0.5 * t2;
+}

@@ -26,16 +26,6 @@ const real GGX_ENERGY_C = 0.02;
 const real GGX_ENERGY_ALPHA_MAX = 1.2;  // the last row, beyond 1 so that alpha <= 1 has four rows around it
 const real GGX_ENERGY_MU_MIN = 1e-7;    // node x = 0
 
-// Catmull-Rom weight of the four samples p[-1], p[0], p[1], p[2] at t in [0, 1] (uniform knots).
-inline real catmull_rom_weight(int k, real t) {
-  real t2 = t * t;
-  real t3 = t2 * t;
-  if (k == 0) return -0.5 * t3 + t2 - 0.5 * t;
-  if (k == 1) return 1.5 * t3 - 2.5 * t2 + 1.0;
-  if (k == 2) return -1.5 * t3 + 2.0 * t2 + 0.5 * t;
-  return 0.5 * t3 - 0.5 * t2;
-}
-
 inline real ggx_energy_row_alpha(int j) {
   real y = real(j) / real(GGX_ENERGY_ROWS - 1);
   return GGX_ENERGY_C * (exp(y * log(1.0 + GGX_ENERGY_ALPHA_MAX / GGX_ENERGY_C)) - 1.0);

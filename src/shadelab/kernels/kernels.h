@@ -33,6 +33,12 @@ inline real ggx_energy_average_texel(int g, int row) {
   static std::atomic<const double*> cache{nullptr};
   return ggx_energy_cached(cache, ggx_energy_average_texels)[g * 32 + row];
 }
+// The sheen lobe's albedo table (sheen.sl): texel (v, row, col) at [(v * 64 + row) * 32 + col].
+const double* sheen_energy_texels();  // 2 * 64 * 32 values (tables.cpp)
+inline real sheen_energy_texel(int v, int row, int col) {
+  static std::atomic<const double*> cache{nullptr};
+  return ggx_energy_cached(cache, sheen_energy_texels)[(v * 64 + row) * 32 + col];
+}
 
 // Texel fetches of the baked environment the split sum reads (cube.sl, game_ibl.sl): cube maps addressed by an
 // index (a GGX chain's level i is cube i) and the DFG table. In C++ they read the IblTexels bound to the calling
@@ -87,6 +93,7 @@ inline real dfg_texel(int x, int y, int channel) {
 #include "shadelab/kernels/fresnel.sl"
 #include "shadelab/kernels/microfacet.sl"
 #include "shadelab/kernels/ggx_energy.sl"
+#include "shadelab/kernels/sheen.sl"
 #include "shadelab/kernels/split_sum.sl"
 #include "shadelab/kernels/lambert.sl"
 #include "shadelab/kernels/phong.sl"
@@ -99,6 +106,7 @@ inline real dfg_texel(int x, int y, int channel) {
 #include "shadelab/kernels/ggx.sl"
 #include "shadelab/kernels/burley.sl"
 #include "shadelab/kernels/filament.sl"
+#include "shadelab/kernels/gltf.sl"
 #include "shadelab/kernels/game_shading.sl"
 #include "shadelab/kernels/sh9.sl"
 #include "shadelab/kernels/game_ambient.sl"

@@ -1,7 +1,9 @@
 #include "shadelab/kernels/tables.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <thread>
 
 #include "shadelab/kernels/kernels.h"
 #include "shadelab/numeric/quadrature.h"
@@ -142,7 +144,150 @@ GgxEnergyTable compute_table(int g) {
   return table;
 }
 
+// ---- The sheen lobe's directional albedo (sheen.sl).
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The n-point Gauss-Legendre rule on [-1, 1]: nodes are the roots of P_n, found by Newton's method from
+// cos(pi (k + 3/4) / (n + 1/2)) (Abramowitz & Stegun 22.16.6's asymptotic), weights 2 / ((1 - x^2) P_n'(x)^2)
+// (A&S 25.4.29), P_n by Bonnet's recurrence (k + 1) P_{k+1} = (2k + 1) x P_k - k P_{k-1}.
+struct GaussLegendre {
+  std::vector<double> x;
+  std::vector<double> w;
+};
+
+GaussLegendre gauss_legendre(int n) {
+  GaussLegendre g;
+  for (int k = 0; k < n; ++k) {
+    double x = std::cos(kPi * (k + 0.75) / (n + 0.5));
+    double dp = 1.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0;
+      double p1 = x;
+      for (int m = 2; m <= n; ++m) {
+        const double p2 = ((2.0 * m - 1.0) * x * p1 - (m - 1.0) * p0) / m;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (x * p1 - p0) / (x * x - 1.0);  // P_n'(x) = n (x P_n - P_{n-1}) / (x^2 - 1)
+      const double dx = p1 / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-16) break;
+    }
+    g.x.push_back(x);
+    g.w.push_back(2.0 / ((1.0 - x * x) * dp * dp));
+  }
+  return g;
+}
+
+// The azimuthal integral of D_charlie at fixed theta_i, theta_o: integral_0^{2 pi} D(h) d(phi_i), with cos(theta_h) =
+// (cos theta_i + cos theta_o) / |wi + wo| and |wi + wo|^2 = 2 (1 + cos theta_i cos theta_o + sin theta_i sin theta_o
+// cos phi). D is even in phi, so twice the integral over [0, pi], by 48-point Gauss-Legendre (its nodes crowd the
+// ends, where the lobe peaks at low roughness: phi = 0, wi and wo on the same side).
+double azimuthal_charlie_integral(double theta_i, double theta_o, double alpha) {
+  static const GaussLegendre g = gauss_legendre(48);
+  const double ci = std::cos(theta_i);
+  const double si = std::sin(theta_i);
+  const double co = std::cos(theta_o);
+  const double so = std::sin(theta_o);
+  const double p = ci + co;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < g.x.size(); ++k) {
+    const double phi = 0.5 * kPi * (g.x[k] + 1.0);
+    const double n2 = 2.0 * (1.0 + ci * co + si * so * std::cos(phi));
+    if (!(n2 > 0.0)) continue;  // wi antipodal to wo: measure zero
+    sum += g.w[k] * D_charlie(p / std::sqrt(n2), alpha);
+  }
+  return 2.0 * 0.5 * kPi * sum;
+}
+
 }  // namespace
+
+SheenAlbedo sheen_directional_albedo(double mu, double sheen_roughness) {
+  const double alpha = sheen_alpha(sheen_roughness);
+  const double m = std::clamp(mu, 1e-9, 1.0);
+  const double theta_o = std::acos(m);
+  // E = integral over theta_i of sin cos V(theta_i, theta_o) A(theta_i, theta_o) (V does not depend on the azimuth).
+  const auto f = [&](double theta_i, std::span<double> out) {
+    const double ci = std::cos(theta_i);
+    const double a = std::sin(theta_i) * ci * azimuthal_charlie_integral(theta_i, theta_o, alpha);
+    out[0] = a * V_sheen_charlie(ci, m, alpha);
+    out[1] = a * V_sheen_ashikhmin(ci, m);
+  };
+  QuadratureOptions o;
+  o.rel_tol = 1e-8;
+  o.abs_tol = 1e-9;
+  o.initial_intervals = 4;
+  const VectorQuadratureResult q = integrate_vector(f, 2, 0.0, 0.5 * kPi, o);
+  SheenAlbedo r;
+  for (int v = 0; v < 2; ++v) {
+    r.e[v] = q.value[static_cast<std::size_t>(v)];
+    r.error[v] = q.error[static_cast<std::size_t>(v)];
+  }
+  return r;
+}
+
+namespace {
+
+SheenEnergyTable compute_sheen_table() {
+  SheenEnergyTable t;
+  t.rows = SHEEN_ENERGY_ROWS;
+  t.cols = SHEEN_ENERGY_COLS;
+  const auto cells = static_cast<std::size_t>(t.rows * t.cols);
+  t.roughness.resize(static_cast<std::size_t>(t.rows));
+  t.mu.resize(cells);
+  t.e.resize(2 * cells);
+  t.e_error.resize(2 * cells);
+  for (int j = 0; j < t.rows; ++j) {
+    const double r = sheen_energy_row_roughness(j);
+    t.roughness[static_cast<std::size_t>(j)] = r;
+    const double k = 2.0 * r;  // sheen.sl's column scale k_j
+    for (int i = 0; i < t.cols; ++i) {
+      const double x = static_cast<double>(i) / (t.cols - 1);
+      // The inverse of sheen_energy_row's column coordinate: mu = mu_min + k ((1 + (1 - mu_min)/k)^(x^2) - 1).
+      t.mu[static_cast<std::size_t>(j * t.cols + i)] =
+          i == t.cols - 1 ? 1.0 : SHEEN_ENERGY_MU_MIN + k * std::expm1(x * x * std::log1p((1.0 - SHEEN_ENERGY_MU_MIN) / k));
+    }
+  }
+  // Rows on up to 8 threads, each texel computed alone: the same numbers whatever the thread count.
+#ifdef __EMSCRIPTEN__
+  const unsigned threads = 1;  // the explorer's WebAssembly build has no threads
+#else
+  const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
+#endif
+  const auto work = [&](unsigned first) {
+    for (int j = static_cast<int>(first); j < t.rows; j += static_cast<int>(threads)) {
+      for (int i = 0; i < t.cols; ++i) {
+        const auto c = static_cast<std::size_t>(j * t.cols + i);
+        const SheenAlbedo a = sheen_directional_albedo(t.mu[c], t.roughness[static_cast<std::size_t>(j)]);
+        for (std::size_t v = 0; v < 2; ++v) {
+          t.e[v * cells + c] = a.e[v];
+          t.e_error[v * cells + c] = a.error[v];
+        }
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned w = 1; w < threads; ++w) pool.emplace_back(work, w);
+  work(0);
+  for (auto& th : pool) th.join();
+  t.mapping = "rows j = 0.." + std::to_string(t.rows - 1) +
+              ": sheen roughness r_j = r_min + c ((1 + (1 - r_min)/c)^(j/(rows-1)) - 1), r_min = 0.07, c = 0.1; columns "
+              "i = 0.." + std::to_string(t.cols - 1) +
+              ": mu_i = mu_min + k ((1 + (1 - mu_min)/k)^((i/(cols-1))^2) - 1), k = 2 r_j, mu_min = cos(89 deg); texel "
+              "(v, j, i) = e[(v * rows + j) * cols + i], v = 0 charlie, 1 ashikhmin; Catmull-Rom in both coordinates "
+              "with quadratic ghosts, as sheen.sl writes it";
+  return t;
+}
+
+}  // namespace
+
+const SheenEnergyTable& sheen_energy_table() {
+  static const SheenEnergyTable table = compute_sheen_table();
+  return table;
+}
+
+const double* sheen_energy_texels() { return sheen_energy_table().e.data(); }
 
 const GgxEnergyTable& ggx_energy_table(int g) {
   if (g == GGX_ENERGY_G_SEPARABLE) {

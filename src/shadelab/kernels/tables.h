@@ -25,4 +25,28 @@ struct GgxEnergyTable {
 
 const GgxEnergyTable& ggx_energy_table(int g);
 
+// E(mu, r) of the sheen lobe D_charlie V (sheen.sl), for both visibilities: texel (v, j, i) at e[(v * rows + j) *
+// cols + i], v = SHEEN_VISIBILITY_CHARLIE or _ASHIKHMIN. Computed at first use (about 2 CPU-s: 2048 nested
+// quadratures, shared by the two visibilities, on up to 8 threads, deterministic whatever their number).
+struct SheenEnergyTable {
+  int rows = 0;                   // roughness nodes
+  int cols = 0;                   // mu nodes per row
+  std::vector<double> roughness;  // rows: r_j (sheen roughness; alpha = r^2)
+  std::vector<double> mu;         // rows * cols: mu of each texel, row-major
+  std::vector<double> e;          // 2 * rows * cols: E at (mu, r_j) for charlie, then ashikhmin
+  std::vector<double> e_error;    // 2 * rows * cols: the quadrature's estimated absolute error of each texel
+  std::string mapping;            // one paragraph: how (mu, r) maps to texels (sheen.sl)
+};
+
+const SheenEnergyTable& sheen_energy_table();
+
+// The directional albedo of the sheen lobe (D V cos integrated over the hemisphere of wi) at (mu, r) for both
+// visibilities, by the table's own quadrature (outer adaptive Gauss-Kronrod over theta_i, inner 48-point
+// Gauss-Legendre over the azimuth); [0] charlie, [1] ashikhmin. Exposed for `shadelab bake lut` at other resolutions.
+struct SheenAlbedo {
+  double e[2] = {0.0, 0.0};
+  double error[2] = {0.0, 0.0};
+};
+SheenAlbedo sheen_directional_albedo(double mu, double sheen_roughness);
+
 }  // namespace shadelab::kernel
