@@ -21,6 +21,7 @@ std::span<const ModelInfo> brdf_models() {
       burley_model(),
       filament_model(),
       layered_model(),
+      principled_v1_model(),
   };
   return models;
 }

@@ -68,5 +68,6 @@ ModelInfo ggx_model();
 ModelInfo burley_model();
 ModelInfo filament_model();
 ModelInfo layered_model();
+ModelInfo principled_v1_model();
 
 }  // namespace shadelab
