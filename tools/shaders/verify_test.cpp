@@ -98,6 +98,10 @@ const std::vector<std::pair<std::string, ParamAssignments>>& variants() {
     out.push_back({"ggx", {{"f", "none"}, {"ks", "0.9,0.7,0.5"}, {"alpha", "0.1"}}});
     out.push_back({"filament", {{"diffuse", "burley"}, {"energy_compensation", "off"}, {"metallic", "0.3"}}});
     out.push_back({"filament", {{"metallic", "1"}, {"base_color", "0.95,0.64,0.54"}, {"perceptual_roughness", "0.9"}}});
+    out.push_back({"principled-v1", {{"base_color", "0.9,0.5,0.2"}, {"specular", "1"}, {"specular_tint", "1"}, {"sheen", "1"},
+                                     {"clearcoat", "1"}, {"anisotropic", "0.7"}, {"anisotropic_rotation", "0.3"}}});
+    out.push_back({"principled-v1", {{"specular", "0"}, {"metallic", "0.4"}, {"roughness", "1"}, {"anisotropic", "1"},
+                                     {"clearcoat", "0.5"}, {"clearcoat_roughness", "0.999"}, {"base_color", "0"}}});
     return out;
   }();
   return v;
