@@ -413,5 +413,26 @@ TEST(PrincipledV1, AdditiveSheenAndClearcoatRaiseTheAlbedoAboveOne) {
   EXPECT_GT(top, 1.0);  // by design (docs/models/principled-v1.md), not a fault to fix
 }
 
+// No lobe dims another: the albedo is linear in sheen and clearcoat, A(1, 1) + A(0, 0) = A(1, 0) + A(0, 1)
+// (A(sheen, clearcoat)), so each of them adds its own albedo to the lobes below, at every angle.
+TEST(PrincipledV1, SheenAndClearcoatAddWithoutDimmingTheLobesBelow) {
+  AlbedoOptions o;
+  o.quadrature.rel_tol = 1e-9;
+  for (const char* rough : {"0.2", "0.7"}) {
+    const auto albedo = [&](const char* sheen, const char* coat, double t) {
+      const BrdfPtr f = make("principled-v1", {{"roughness", rough}, {"sheen", sheen}, {"clearcoat", coat},
+                                               {"clearcoat_roughness", "0.2"}, {"base_color", "0.9,0.6,0.3"}});
+      return directional_albedo(*f, view(t), o).albedo;
+    };
+    for (double t : {0.0, 45.0, 80.0}) {
+      const Rgb both = albedo("1", "1", t);
+      const Rgb none = albedo("0", "0", t);
+      const Rgb sum = albedo("1", "0", t) + albedo("0", "1", t);
+      EXPECT_GT(both.r, albedo("1", "0", t).r + 1e-4) << rough << " " << t;  // the coat adds something
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(both[c] + none[c], sum[c], 1e-7) << rough << " " << t << " channel " << c;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace shadelab
