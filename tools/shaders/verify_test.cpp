@@ -104,6 +104,10 @@ const std::vector<std::pair<std::string, ParamAssignments>>& variants() {
                             {"anisotropy_strength", "0.6"}, {"anisotropy_rotation", "0.8"}}});
     out.push_back({"gltf", {{"metallic", "0.3"}, {"sheen_color", "0.5"}, {"sheen_roughness", "0.15"}, {"sheen_visibility", "ashikhmin"},
                             {"specular", "0.5"}, {"specular_color", "2,1,0.5"}, {"ior", "1.33"}}});
+    out.push_back({"principled-v1", {{"base_color", "0.9,0.5,0.2"}, {"specular", "1"}, {"specular_tint", "1"}, {"sheen", "1"},
+                                     {"clearcoat", "1"}, {"anisotropic", "0.7"}, {"anisotropic_rotation", "0.3"}}});
+    out.push_back({"principled-v1", {{"specular", "0"}, {"metallic", "0.4"}, {"roughness", "1"}, {"anisotropic", "1"},
+                                     {"clearcoat", "0.5"}, {"clearcoat_roughness", "0.999"}, {"base_color", "0"}}});
     return out;
   }();
   return v;

@@ -140,6 +140,16 @@ std::vector<ParamSet> param_sets() {
       rough = {{"coat_roughness", "1"}, {"base", "ggx"}, {"base_roughness", "1"}, {"coat_color", "0.5,0.7,0.9"},
                {"coat_ior", "2.5"}};
     }
+    // Blender's Principled (reflection): a sharp anisotropic metal under a sharp GTR1 coat; every lobe at 1 and rough;
+    // specular 0 (eta = 1) with a rotated anisotropic lobe and sheen.
+    if (m.name == "principled-v1") {
+      sharp = {{"metallic", "1"}, {"base_color", "0.95,0.64,0.54"}, {"roughness", "0.05"}, {"anisotropic", "0.8"},
+               {"anisotropic_rotation", "0.125"}, {"clearcoat", "1"}};
+      rough = {{"base_color", "0.9,0.5,0.2"}, {"roughness", "1"}, {"specular", "1"}, {"specular_tint", "1"}, {"sheen", "1"},
+               {"sheen_tint", "1"}, {"clearcoat", "1"}, {"clearcoat_roughness", "1"}};
+      extra = {{"specular", "0"}, {"metallic", "0.3"}, {"roughness", "0.3"}, {"anisotropic", "1"},
+               {"anisotropic_rotation", "0.3"}, {"sheen", "0.5"}};
+    }
     if (!sharp.empty()) mine.push_back({m.name, "sharp", sharp, false});
     if (!rough.empty()) mine.push_back({m.name, "rough", rough, false});
     if (!extra.empty()) mine.push_back({m.name, "extra", extra, false});

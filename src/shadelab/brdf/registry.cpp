@@ -22,6 +22,7 @@ std::span<const ModelInfo> brdf_models() {
       filament_model(),
       gltf_model(),
       layered_model(),
+      principled_v1_model(),
   };
   return models;
 }

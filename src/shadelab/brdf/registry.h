@@ -69,5 +69,6 @@ ModelInfo burley_model();
 ModelInfo filament_model();
 ModelInfo gltf_model();
 ModelInfo layered_model();
+ModelInfo principled_v1_model();
 
 }  // namespace shadelab

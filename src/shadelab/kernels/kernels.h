@@ -107,6 +107,7 @@ inline real dfg_texel(int x, int y, int channel) {
 #include "shadelab/kernels/burley.sl"
 #include "shadelab/kernels/filament.sl"
 #include "shadelab/kernels/gltf.sl"
+#include "shadelab/kernels/principled_v1.sl"
 #include "shadelab/kernels/game_shading.sl"
 #include "shadelab/kernels/sh9.sl"
 #include "shadelab/kernels/game_ambient.sl"
