@@ -66,7 +66,7 @@ void add_layering_error_command(CLI::App& app, Command& command) {
         nlohmann::json albedo = nlohmann::json::array();
         for (const auto& a : r->albedo) {
           albedo.push_back({{"theta", a.theta_deg}, {"truth", a.truth}, {"truth_error", a.truth_error},
-                            {"model", a.model}, {"albedo_scaled", a.albedo_scaled}});
+                            {"model", a.model}, {"albedo_scaled", a.albedo_scaled}, {"truth_furnace", a.truth_furnace}});
         }
         nlohmann::json lobe = nlohmann::json::array();
         for (const auto& l : r->lobe) {
@@ -87,10 +87,10 @@ void add_layering_error_command(CLI::App& app, Command& command) {
       for (const auto& [k, v] : r->truth_params) truth += " " + k + "=" + v;
       fmt::print("{}: the specification's layering against the ground truth (layered{})\n", r->model, truth);
       fmt::print("directional albedo (green channel)\n");
-      fmt::print("  theta   truth (+- se)          {:<10} albedo-scaled\n", r->model);
+      fmt::print("  theta   truth (+- se)          {:<10} albedo-scaled   truth's white furnace\n", r->model);
       for (const auto& a : r->albedo) {
-        fmt::print("  {:5.1f}   {:.5f} (+- {:.5f})   {:+.5f}   {:+.5f}\n", a.theta_deg, a.truth, a.truth_error,
-                   a.model - a.truth, a.albedo_scaled - a.truth);
+        fmt::print("  {:5.1f}   {:.5f} (+- {:.5f})   {:+.5f}   {:+.5f}       {:.4f}\n", a.theta_deg, a.truth, a.truth_error,
+                   a.model - a.truth, a.albedo_scaled - a.truth, a.truth_furnace);
       }
       fmt::print("lobe RMSE of (f - f_true) cos over a 16 x 32 grid (the truth's own noise beside it)\n");
       fmt::print("  theta   truth rms   noise rms   {:<10}  albedo-scaled\n", r->model);

@@ -107,6 +107,11 @@ Result<LayeringErrorReport> layering_error(const std::string& model, const Param
   }
   auto layered_albedo = make_brdf("layered", one_walk);
   if (!layered_albedo) return layered_albedo.error();
+  for (auto& [k, v] : one_walk) {
+    if (k == "base_color") v = "1";
+  }
+  auto layered_white = make_brdf("layered", one_walk);
+  if (!layered_white) return layered_white.error();
   auto base_only = make_brdf(model, with(params, "clearcoat", "0"));
   if (!base_only) return base_only.error();
   const Brdf& fl = **layered;
@@ -130,6 +135,9 @@ Result<LayeringErrorReport> layering_error(const std::string& model, const Param
     row.truth_error = c * al.error.g;
     row.model = directional_albedo(*g, wo, quad).albedo.g;
     row.albedo_scaled = (1.0 - c * ec) * ab + c * ec;
+    AlbedoOptions furnace = sampled;
+    furnace.stochastic_samples = std::max(1000, options.albedo_samples / 5);
+    row.truth_furnace = directional_albedo(**layered_white, wo, furnace).albedo.g;
     report.max_albedo_difference = std::max(report.max_albedo_difference, std::abs(row.model - row.truth));
     report.max_albedo_scaled_difference =
         std::max(report.max_albedo_scaled_difference, std::abs(row.albedo_scaled - row.truth));

@@ -14,10 +14,9 @@ static_assert(static_cast<int>(Gltf::SheenVisibility::ashikhmin) == kernel::SHEE
 namespace {
 
 kernel::GltfParams kernel_params(const Gltf::Params& p) {
-  return {p.base_color,          p.metallic,   p.roughness,       p.ior,
-          p.specular,            p.specular_color, p.anisotropy_strength, p.anisotropy_rotation,
-          p.sheen_color,         p.sheen_roughness, static_cast<int>(p.sheen_visibility), p.clearcoat,
-          p.clearcoat_roughness};
+  return {p.base_color,      p.metallic, p.specular_color,      p.roughness,           p.sheen_color,
+          p.sheen_roughness, p.ior,      p.specular,            p.anisotropy_strength, p.anisotropy_rotation,
+          static_cast<int>(p.sheen_visibility), p.clearcoat, p.clearcoat_roughness};
 }
 
 // Schlick's cosine-weighted average of F over the hemisphere: f0 + (1 - f0) / 21 (fresnel.sl F_average).
@@ -104,14 +103,14 @@ std::optional<KernelBinding> Gltf::kernel_binding() const {
   return KernelBinding{"gltf", {}}
       .add("base_color", p.base_color)
       .add("metallic", p.metallic)
-      .add("roughness", p.roughness)
-      .add("ior", p.ior)
-      .add("specular", p.specular)
       .add("specular_color", p.specular_color)
-      .add("anisotropy_strength", p.anisotropy_strength)
-      .add("anisotropy_rotation", p.anisotropy_rotation)
+      .add("roughness", p.roughness)
       .add("sheen_color", p.sheen_color)
       .add("sheen_roughness", p.sheen_roughness)
+      .add("ior", p.ior)
+      .add("specular", p.specular)
+      .add("anisotropy_strength", p.anisotropy_strength)
+      .add("anisotropy_rotation", p.anisotropy_rotation)
       .add("sheen_visibility", p.sheen_visibility)
       .add("clearcoat", p.clearcoat)
       .add("clearcoat_roughness", p.clearcoat_roughness);

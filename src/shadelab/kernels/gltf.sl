@@ -21,18 +21,20 @@
 // fresnel_coat reads N.V alone, so with clearcoat > 0 it is not (the specification's choice, measured in
 // docs/models/gltf.md).
 
+// Each rgb field starts a 16-byte row (three rgb + real pairs first, then the scalars), so that std140 and HLSL's
+// cbuffer packing (which lets a float3 follow a float inside a row) give the same offsets.
 struct GltfParams {
   rgb base_color;
   real metallic;
-  real roughness;  // perceptual: alpha = roughness^2
-  real ior;
-  real specular;
   rgb specular_color;
-  real anisotropy_strength;
-  real anisotropy_rotation;  // radians, counter-clockwise from the tangent
+  real roughness;  // perceptual: alpha = roughness^2
   rgb sheen_color;
   real sheen_roughness;
-  int sheen_visibility;  // SHEEN_VISIBILITY_* (sheen.sl)
+  real ior;
+  real specular;
+  real anisotropy_strength;
+  real anisotropy_rotation;  // radians, counter-clockwise from the tangent
+  int sheen_visibility;      // SHEEN_VISIBILITY_* (sheen.sl)
   real clearcoat;
   real clearcoat_roughness;
 };
@@ -122,7 +124,10 @@ inline rgb gltf_eval(GltfState s, vec3 wi, vec3 wo) {
   }
   if (s.clearcoat > 0.0) {
     real fc = s.clearcoat * gltf_clearcoat_fresnel(wo.z);
-    real coat = D_ggx(h.z, s.clearcoat_alpha) * V_smith_ggx_correlated(wo.z, wi.z, s.clearcoat_alpha);
+    // D from h's components (D_ggx_aniso with equal roughness): near the mirror direction of a sharp coat,
+    // (a^2 - 1) cos^2 + 1 formed from cos^2 loses digits in single precision that h.x^2 + h.y^2 keeps.
+    real coat = D_ggx_aniso(h, s.clearcoat_alpha, s.clearcoat_alpha) *
+                V_smith_ggx_correlated(wo.z, wi.z, s.clearcoat_alpha);
     f = f * (1.0 - fc) + rgb(fc * coat);
   }
   return f;

@@ -40,12 +40,15 @@ inline real sheen_alpha(real sheen_roughness) {
   return r * r;
 }
 
-// D_charlie(cos_h, a) = (2 + 1/a) (1 - cos_h^2)^(1/(2a)) / (2 pi) for cos_h > 0 (Estevez & Kulla 2017, eq. 2).
+// D_charlie = (2 + 1/a) sin(theta_h)^(1/a) / (2 pi) (Estevez & Kulla 2017, eq. 2), from sin^2(theta_h) = s2 (for a
+// unit half vector h.x^2 + h.y^2, which keeps the digits that 1 - cos^2 loses near the normal).
+inline real D_charlie_sin2(real s2, real alpha) {
+  if (s2 <= 0.0) return 0.0;  // pow(0, y) is undefined in GLSL; the limit is 0 (1/(2a) > 0)
+  return (2.0 + 1.0 / alpha) * pow(min(s2, 1.0), 0.5 / alpha) * SL_INV_TWO_PI;
+}
 inline real D_charlie(real cos_h, real alpha) {
   if (cos_h <= 0.0) return 0.0;
-  real s2 = 1.0 - cos_h * cos_h;
-  if (s2 <= 0.0) return 0.0;  // pow(0, y) is undefined in GLSL; the limit is 0 (1/(2a) > 0)
-  return (2.0 + 1.0 / alpha) * pow(s2, 0.5 / alpha) * SL_INV_TWO_PI;
+  return D_charlie_sin2(1.0 - cos_h * cos_h, alpha);
 }
 
 // Estevez & Kulla's L(x): a0 / (1 + a1 x^a2) + a3 x + a4 with (a0..a4) = mix(fit at a = 1, fit at a = 0, (1 - a)^2)
@@ -82,7 +85,8 @@ inline real sheen_dv(int visibility, vec3 wi, vec3 wo, real alpha) {
   if (wi.z <= 0.0 || wo.z <= 0.0) return 0.0;
   vec3 h = half_vector(wi, wo);
   real v = visibility == SHEEN_VISIBILITY_ASHIKHMIN ? V_sheen_ashikhmin(wi.z, wo.z) : V_sheen_charlie(wi.z, wo.z, alpha);
-  return D_charlie(h.z, alpha) * v;
+  if (h.z <= 0.0) return 0.0;
+  return D_charlie_sin2(h.x * h.x + h.y * h.y, alpha) * v;
 }
 
 // ---- The directional albedo table E(mu, r) = integral of D V cos(theta_i) d(omega_i).
@@ -96,7 +100,7 @@ inline real sheen_energy_row_roughness(int j) {
 // The continuous row coordinate of a roughness (clamped to the table's range).
 inline real sheen_energy_row_position(real sheen_roughness) {
   real r = clamp(sheen_roughness, SHEEN_ROUGHNESS_MIN, 1.0);
-  return log(1.0 + (r - SHEEN_ROUGHNESS_MIN) / SHEEN_ENERGY_ROW_C) /
+  return log1p_accurate((r - SHEEN_ROUGHNESS_MIN) / SHEEN_ENERGY_ROW_C) /
          log(1.0 + (1.0 - SHEEN_ROUGHNESS_MIN) / SHEEN_ENERGY_ROW_C) * real(SHEEN_ENERGY_ROWS - 1);
 }
 
@@ -117,7 +121,7 @@ inline real sheen_energy_texel_ghost(int v, int j, int i) {
 inline real sheen_energy_row(int v, int j, real mu) {
   real k = 2.0 * sheen_energy_row_roughness(j);
   real m = clamp(mu, SHEEN_ENERGY_MU_MIN, 1.0);
-  real x = sqrt(log(1.0 + (m - SHEEN_ENERGY_MU_MIN) / k) / log(1.0 + (1.0 - SHEEN_ENERGY_MU_MIN) / k)) *
+  real x = sqrt(log1p_accurate((m - SHEEN_ENERGY_MU_MIN) / k) / log(1.0 + (1.0 - SHEEN_ENERGY_MU_MIN) / k)) *
            real(SHEEN_ENERGY_COLS - 1);
   int i = int(min(floor(x), real(SHEEN_ENERGY_COLS - 2)));
   real s = x - real(i);
