@@ -264,14 +264,14 @@ DfgValue dfg_gauss(double mu, double alpha, const DfgGaussRule& rule) {
   return value;
 }
 
-DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol) {
+DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol, double abs_tol) {
   const Integrand f = make_integrand(mu, alpha);
   // The same variables and horizon bound as dfg_quadrature: (phi, u) over [0, pi] (every integrand below is
   // even in phi: l.x and l.z are, l.y is odd and its integral vanishes), u = ln(1 + tan^2(theta_h) / alpha^2).
   const auto u_max = [&](double phi) { return f.u_max(phi); };
   QuadratureOptions options;
   options.rel_tol = rel_tol;
-  options.abs_tol = 1e-10;
+  options.abs_tol = abs_tol;
   options.initial_intervals = 4;
   options.max_subdivisions = 4000;
   QuadratureOptions inner = options;
@@ -444,20 +444,21 @@ DfgTable bake_dfg(const DfgOptions& options) {
   });
   if (options.samples == 0 && !options.adaptive) {
     // The fixed rule has no error estimate of its own: its difference to the finer rule (dfg_gauss_check_rule,
-    // 1.5 times the nodes in every direction, itself within 4e-8 of the adaptive quadrature at every texel
-    // tried) at the texels of every 8th column and row and the first two and the last of each: the grazing
-    // columns and the edge rows, where the rule's error is largest (docs/envmap.md).
-    std::vector<int> lines;
-    for (int i = 0; i < options.size; ++i) {
-      if (i % 8 == 0 || i == 1 || i == options.size - 1) lines.push_back(i);
+    // 1.5 times the nodes in every direction, itself within 4e-8 of the adaptive quadrature wherever tried) at
+    // the texels of the first two and the last columns and rows, where the rule's error is largest (grazing view,
+    // the smoothest and roughest rows), and of every 8th column and row (docs/envmap.md).
+    const auto edge = [&](int i) { return i < 2 || i == options.size - 1; };
+    std::vector<std::size_t> subset;
+    for (int j = 0; j < options.size; ++j) {
+      for (int i = 0; i < options.size; ++i) {
+        if (edge(i) || edge(j) || (i % 8 == 0 && j % 8 == 0)) subset.push_back(static_cast<std::size_t>(j) * n + static_cast<std::size_t>(i));
+      }
     }
-    const auto m = lines.size();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m * m), [&](const tbb::blocked_range<std::size_t>& r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, subset.size()), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t q = r.begin(); q != r.end(); ++q) {
-        const int i = lines[q % m], j = lines[q / m];
-        const double rough = (j + 0.5) / options.size;
-        const DfgValue fine = dfg_gauss((i + 0.5) / options.size, rough * rough, dfg_gauss_check_rule());
-        const auto k = static_cast<std::size_t>(j) * n + static_cast<std::size_t>(i);
+        const std::size_t k = subset[q];
+        const double rough = (static_cast<double>(k / n) + 0.5) / options.size;
+        const DfgValue fine = dfg_gauss((static_cast<double>(k % n) + 0.5) / options.size, rough * rough, dfg_gauss_check_rule());
         errors[k] = std::max(std::abs(fine.a - table.texels[k * 3]), std::abs(fine.b - table.texels[k * 3 + 1]));
         evaluations[k] += fine.evaluations;
       }

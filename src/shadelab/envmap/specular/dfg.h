@@ -87,13 +87,14 @@ DfgValue dfg_sampled(double mu, double alpha, int samples);
 // n and v; negative: past n, away from R), and its spread 1 - |m_k| = integral w_k (1 - l.m_k/|m_k|) dl /
 // integral w_k dl (taken in a second pass, with 1 - l.d = |l - d|^2 / 2, so that it keeps its relative
 // precision for the thinnest lobes). Used by the split sum's lobe-matched lookup (split_sum_lobes.h).
-// rel_tol: relative tolerance of every integral. mu in (0, 1], alpha > 0.
+// rel_tol: relative tolerance of every integral, abs_tol its absolute floor (B at near-normal view on smooth
+// surfaces is as small as 1e-9: a floor of 1e-10 leaves its moments loose there). mu in (0, 1], alpha > 0.
 struct DfgLobeMoments {
   double weight[2] = {0.0, 0.0};
   double angle[2] = {0.0, 0.0};
   double spread[2] = {0.0, 0.0};
 };
-DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol = 1e-7);
+DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol = 1e-7, double abs_tol = 1e-10);
 // The same moments by dfg_gauss's fixed rule (both passes over the same nodes): what the lobe table uses, its
 // error against dfg_lobe_moments measured in split_sum_lobes_test.cpp.
 DfgLobeMoments dfg_lobe_moments_gauss(double mu, double alpha, const DfgGaussRule& rule = {});
