@@ -18,7 +18,12 @@
 // - prefilter_chain: the Phong chain 256 .. 1 (9 levels) from 6 x 256^2, with its error against the brute
 //   force per level and the brute-force chain's time extrapolated from measured directions;
 // - prefilter_ggx_chain: the same for the GGX chain (the default lobe sum) against its brute force;
-// - split_sum_reads/N: the split sum's filtered taps (N per shading point) against one chain read (N = 0).
+// - split_sum_reads/N: the split sum's filtered taps (N per shading point) against one chain read (N = 0);
+// - dfg_table/N, dfg_table_adaptive/N: the N x N DFG table (bake_dfg, 2 threads) by the fixed Gauss-Legendre
+//   rule (the default, error estimate included) and by the former adaptive quadrature to 1e-6, in texels/s;
+// - lobe_moments_gauss / lobe_moments_adaptive: the split-sum lobe table's moments (dfg_lobe_moments_gauss, and
+//   dfg_lobe_moments at relative tolerance 1e-5 as the table used to take them) over the same 8 x 8 texels,
+//   one thread, in texels/s.
 //
 //   ./build/release/bench/envmap_bench     (or bench/run.sh for everything with the table)
 #include <benchmark/benchmark.h>
@@ -39,6 +44,7 @@
 #include "shadelab/envmap/specular/prefilter.h"
 #include "shadelab/envmap/specular/prefilter_ggx.h"
 #include "shadelab/envmap/diffuse/sh.h"
+#include "shadelab/envmap/specular/dfg.h"
 #include "shadelab/envmap/specular/split_sum_taps.h"
 #include "shadelab/envmap/base/simd.h"
 #include "shadelab/image/image_io.h"
@@ -370,6 +376,44 @@ void split_sum_reads(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * points);
 }
 BENCHMARK(split_sum_reads)->Arg(0)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void dfg_table_of(benchmark::State& state, bool adaptive) {
+  DfgOptions o;
+  o.size = static_cast<int>(state.range(0));
+  o.adaptive = adaptive;
+  double error = 0.0;
+  for (auto _ : state) {
+    const DfgTable t = bake_dfg(o);
+    error = t.max_error_estimate;
+    benchmark::DoNotOptimize(t.texels.data());
+  }
+  state.SetItemsProcessed(state.iterations() * o.size * o.size);
+  state.counters["error_estimate"] = error;
+}
+void dfg_table(benchmark::State& state) { dfg_table_of(state, false); }
+void dfg_table_adaptive(benchmark::State& state) { dfg_table_of(state, true); }
+BENCHMARK(dfg_table)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(dfg_table_adaptive)->Arg(16)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+void lobe_moments_of(benchmark::State& state, bool adaptive) {
+  constexpr int n = 8;
+  for (auto _ : state) {
+    double sum = 0.0;
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const double mu = (i + 0.5) / n, r = (j + 0.5) / n;
+        const DfgLobeMoments m = adaptive ? dfg_lobe_moments(mu, r * r, 1e-5) : dfg_lobe_moments_gauss(mu, r * r);
+        sum += m.spread[0] + m.angle[1];
+      }
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations() * n * n);
+}
+void lobe_moments_gauss(benchmark::State& state) { lobe_moments_of(state, false); }
+void lobe_moments_adaptive(benchmark::State& state) { lobe_moments_of(state, true); }
+BENCHMARK(lobe_moments_gauss)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(lobe_moments_adaptive)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
 

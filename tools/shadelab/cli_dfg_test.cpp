@@ -78,10 +78,28 @@ TEST(CliDfg, SamplingReportsItsMeasuredError) {
   EXPECT_LT(j["error"].get<double>(), 0.2);
 }
 
+TEST(CliDfg, AdaptiveIsTheReferenceQuadratureAndTheDefaultIsWithinAMillionthOfIt) {
+  const fs::path fixed = temp_dir() / "dfg_fixed.exr", adaptive = temp_dir() / "dfg_adaptive.exr";
+  const auto jf = json_of(run("bake dfg --size 4 --out " + fixed.string() + " --json"));
+  const auto ja = json_of(run("bake dfg --size 4 --adaptive --out " + adaptive.string() + " --json"));
+  EXPECT_EQ(jf["method"], "quadrature");
+  EXPECT_EQ(ja["method"], "adaptive quadrature");
+  EXPECT_NE(jf["error_meaning"], ja["error_meaning"]);
+  EXPECT_LT(ja["error"].get<double>(), 2e-6);
+  const auto a = shadelab::read_image(fixed).value(), b = shadelab::read_image(adaptive).value();
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_NEAR(a.at(i, j).r, b.at(i, j).r, 1e-6) << i << " " << j;
+      EXPECT_NEAR(a.at(i, j).g, b.at(i, j).g, 1e-6) << i << " " << j;
+    }
+  }
+}
+
 TEST(CliDfg, BadOptionsAreUsageErrors) {
   expect_usage_error("bake dfg --size 0 --out " + (temp_dir() / "x.exr").string(), "--size");
   expect_usage_error("bake dfg --size 8 --samples -3 --out " + (temp_dir() / "x.exr").string(), "--samples");
   expect_usage_error("bake dfg --size 8 --out " + (temp_dir() / "x.png").string(), "--out");
+  expect_usage_error("bake dfg --size 8 --adaptive --samples 4 --out " + (temp_dir() / "x.exr").string(), "--adaptive");
   EXPECT_FALSE(fs::exists(temp_dir() / "x.exr"));
   EXPECT_FALSE(fs::exists(temp_dir() / "x.png"));
 }

@@ -211,8 +211,7 @@ void run_ibl(const IblOptions& o) {
                               {"levels", 1},
                               {"content", "DFG table of the split sum (scale A and bias B of F0)"},
                               {"error", dfg.max_error_estimate},
-                              {"error_meaning", "largest per-texel absolute error estimate of the quadrature "
-                                                "(before half-float rounding)"}};
+                              {"error_meaning", std::string(dfg_error_meaning) + " (before half-float rounding)"}};
   dfg_entry.update(dfg_conventions_json(o.multiscatter));
   const nlohmann::json lobes_entry = {{"file", "split_sum_lobes.json"}, {"container", "json"}, {"size", lobes.size()},
                                       {"content", lobes_json["content"]}, {"use", lobes_json["use"]}};

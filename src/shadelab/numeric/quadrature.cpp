@@ -4,6 +4,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
 
 #include "shadelab/core/constants.h"
 #include "shadelab/core/frame.h"
@@ -429,6 +433,60 @@ VectorQuadratureResult integrate_directions(const DirectionFunction& g, std::siz
 VectorQuadratureResult integrate_sphere(const DirectionFunction& g, std::size_t dim, const Vec3& axis_upper,
                                         const Vec3& axis_lower, const QuadratureOptions& options) {
   return both_halves(PolarCoordinates(g, axis_upper), PolarCoordinates(g, axis_lower), dim, options, std::nullopt);
+}
+
+namespace {
+
+// P_n(x) and P_{n-1}(x) by Bonnet's recurrence k P_k = (2k - 1) x P_{k-1} - (k - 1) P_{k-2}.
+void legendre(int n, double x, double& pn, double& pn1) {
+  double p0 = 1.0, p1 = x;
+  for (int k = 2; k <= n; ++k) {
+    const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+    p0 = p1;
+    p1 = p2;
+  }
+  pn = n == 0 ? 1.0 : p1;
+  pn1 = n == 0 ? 0.0 : p0;
+}
+
+GaussLegendreRule build_gauss_legendre(int n) {
+  GaussLegendreRule r;
+  r.nodes.resize(static_cast<std::size_t>(n));
+  r.weights.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < (n + 1) / 2; ++i) {
+    // Root i (descending) of P_n: Tricomi's estimate cos(pi (i + 3/4) / (n + 1/2)), then Newton's method.
+    double x = std::cos(pi * (i + 0.75) / (n + 0.5));
+    double pn = 0.0, pn1 = 0.0, dp = 1.0;
+    for (int it = 0; it < 100; ++it) {
+      legendre(n, x, pn, pn1);
+      dp = n * (x * pn - pn1) / (x * x - 1.0);  // P_n'(x) = n (x P_n - P_{n-1}) / (x^2 - 1)
+      const double dx = pn / dp;
+      x -= dx;
+      if (std::abs(dx) <= 4.0 * epsilon) break;
+    }
+    legendre(n, x, pn, pn1);
+    dp = n * (x * pn - pn1) / (x * x - 1.0);
+    const double w = 2.0 / ((1.0 - x * x) * dp * dp);  // Abramowitz & Stegun 25.4.29
+    // Symmetric pairs: -x at the front, +x at the back (the middle node of an odd rule is x = 0 exactly).
+    const auto lo = static_cast<std::size_t>(i), hi = static_cast<std::size_t>(n - 1 - i);
+    r.nodes[lo] = lo == hi ? 0.0 : -x;
+    r.nodes[hi] = lo == hi ? 0.0 : x;
+    r.weights[lo] = w;
+    r.weights[hi] = w;
+  }
+  return r;
+}
+
+}  // namespace
+
+const GaussLegendreRule& gauss_legendre_rule(int n) {
+  constexpr int max_n = 128;
+  if (n < 1 || n > max_n) throw std::invalid_argument("gauss_legendre_rule: n = " + std::to_string(n) + " is not in [1, 128]");
+  static std::once_flag once[max_n + 1];
+  static std::unique_ptr<GaussLegendreRule> rules[max_n + 1];
+  const auto k = static_cast<std::size_t>(n);
+  std::call_once(once[k], [&] { rules[k] = std::make_unique<GaussLegendreRule>(build_gauss_legendre(n)); });
+  return *rules[k];
 }
 
 }  // namespace shadelab

@@ -1,5 +1,6 @@
 // shadelab deterministic quadrature: globally adaptive Gauss-Kronrod (G7/K15) in 1D, nested 2D, and
-// integrals over regions of the sphere of directions in polar coordinates about a chosen axis.
+// integrals over regions of the sphere of directions in polar coordinates about a chosen axis; fixed
+// Gauss-Legendre rules for callers that choose their own variables and node counts.
 //
 // Contract:
 // - integrate(f, a, b, options) estimates the integral of f over [a, b] (a < b, or a == b giving 0). Each
@@ -28,6 +29,10 @@
 //   Put the axis on the integrand's peak. An axis closer to the horizon than |z| = 0.01 is tilted to
 //   |z| = 0.01 at the same azimuth (about an axis on the horizon the bounds would jump); a zero axis is +Z. For the
 //   sphere the two halves share the tolerance on the total; integrate_sphere takes one axis per half.
+// - gauss_legendre_rule(n) is the n-point Gauss-Legendre rule on [-1, 1] (nodes ascending, weights), exact for
+//   polynomials of degree 2n - 1; n in [1, 128]. The nodes are the roots of P_n found by Newton's method from
+//   Tricomi's estimate, the weights 2 / ((1 - x^2) P_n'(x)^2) (Abramowitz & Stegun 25.4.29); built once per n,
+//   thread-safe, the same bits every time.
 #pragma once
 
 #include <cstddef>
@@ -85,6 +90,13 @@ VectorQuadratureResult integrate_2d_vector(const VectorFunction2d& f, std::size_
                                            const BoundFunction& c, const BoundFunction& d,
                                            const QuadratureOptions& options = {},
                                            const std::optional<QuadratureOptions>& inner = std::nullopt);
+
+struct GaussLegendreRule {
+  std::vector<double> nodes;    // ascending, in (-1, 1)
+  std::vector<double> weights;  // sum 2
+};
+// Throws std::invalid_argument for n outside [1, 128].
+const GaussLegendreRule& gauss_legendre_rule(int n);
 
 enum class SphereRegion { upper, lower, sphere };
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "shadelab/core/constants.h"
 
@@ -27,6 +28,45 @@ TEST(Quadrature, KronrodAndGaussDegreesOfExactness) {
   }
   const auto beyond = integrate([](double x) { return std::pow(x, 30); }, 0.0, 1.0, one);
   EXPECT_GT(std::abs(beyond.value - 1.0 / 31.0), 1e-14);  // degree 30 is past the Kronrod rule's reach
+}
+
+// The n-point Gauss-Legendre rule integrates x^k exactly for k <= 2n - 1 and not x^2n; n = 7 is QUADPACK's
+// embedded 7-point Gauss rule (its tabulated nodes and weights, written here).
+TEST(Quadrature, GaussLegendreRulesAreExactToDegreeTwoNMinusOne) {
+  for (const int n : {1, 2, 3, 7, 16, 24, 64}) {
+    const GaussLegendreRule& r = gauss_legendre_rule(n);
+    ASSERT_EQ(r.nodes.size(), static_cast<std::size_t>(n));
+    for (int k = 0; k <= 2 * n; ++k) {
+      double sum = 0.0;
+      for (int i = 0; i < n; ++i) sum += r.weights[static_cast<std::size_t>(i)] * std::pow(r.nodes[static_cast<std::size_t>(i)], k);
+      const double exact = k % 2 == 1 ? 0.0 : 2.0 / (k + 1);  // integral of x^k over [-1, 1]
+      if (k < 2 * n) {
+        EXPECT_NEAR(sum, exact, 1e-14) << "n " << n << ", x^" << k;
+      } else {
+        // x^2n is beyond the rule by exactly 2^(2n+1) (n!)^4 / ((2n+1) ((2n)!)^2) (Abramowitz & Stegun 25.4.29's
+        // remainder with f^(2n) = (2n)!), where that is above rounding.
+        const double remainder = std::exp((2 * n + 1) * std::log(2.0) + 4.0 * std::lgamma(n + 1.0) -
+                                          std::log(2.0 * n + 1.0) - 2.0 * std::lgamma(2.0 * n + 1.0));
+        if (remainder > 1e-12) {
+          EXPECT_NEAR(exact - sum, remainder, 1e-6 * remainder + 1e-15) << "n " << n << ": x^" << k;
+        }
+      }
+    }
+    for (int i = 0; i + 1 < n; ++i) EXPECT_LT(r.nodes[static_cast<std::size_t>(i)], r.nodes[static_cast<std::size_t>(i + 1)]);
+  }
+  const GaussLegendreRule& g7 = gauss_legendre_rule(7);
+  const double nodes[4] = {0.949107912342758524526189684047851, 0.741531185599394439863864773280788,
+                           0.405845151377397166906606412076961, 0.0};
+  const double weights[4] = {0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
+                             0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(g7.nodes[static_cast<std::size_t>(6 - i)], nodes[i], 1e-15);
+    EXPECT_NEAR(g7.nodes[static_cast<std::size_t>(i)], -nodes[i], 1e-15);
+    EXPECT_NEAR(g7.weights[static_cast<std::size_t>(i)], weights[i], 1e-15);
+  }
+  EXPECT_THROW(gauss_legendre_rule(0), std::invalid_argument);
+  EXPECT_THROW(gauss_legendre_rule(129), std::invalid_argument);
+  EXPECT_EQ(&gauss_legendre_rule(16), &gauss_legendre_rule(16));  // built once
 }
 
 TEST(Quadrature, SmoothKnownIntegrals) {

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <span>
+#include <vector>
 #include <stdexcept>
 #include <string>
 
@@ -65,6 +66,140 @@ Integrand make_integrand(double mu, double alpha) {
   return f;
 }
 
+// Smith's Lambda of the view direction v = (sqrt(1 - mu^2), 0, mu) (microfacet.sl lambda_ggx).
+double lambda_of_view(double mu, double alpha) {
+  return kernel::lambda_ggx(Vec3{std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu}, alpha, alpha);
+}
+
+// The fixed product rule of dfg_gauss (dfg.h): the same integrand in the same measure, d(xi) d(phi) / (2 pi) over
+// the half vector, written in variables where it is smooth, each on panels whose ends are its features:
+// - phi in [0, pi] (the integrand is even in phi): the view's azimuth plane is phi = 0. At grazing view the
+//   integrand and the horizon bound change across cos(phi) = 0 on the scale eps = N.V / sin(theta_v) (v.h and
+//   the horizon angle delta both depend on phi through sin(theta_v) cos(phi) / N.V), so the middle third,
+//   x = cos(phi) in [-1/2, 1/2], is integrated in tau with x = eps sinh(tau) (tan(delta) = sinh(tau)), and
+//   the outer thirds, phi in [0, pi/3] and [2 pi/3, pi], in phi.
+// - along each phi, w = sqrt(u), u = -ln(1 - xi) = ln(1 + tan^2(theta_h) / alpha^2): d(xi) = 2 w e^(-w^2) dw,
+//   smooth at w = 0 (in u the half vector moves as sqrt(u) there) and spreading a thin lobe over w in [0, 3].
+//   Panels: [0, min(w_h, core_end)] (the lobe's core), [core_end, w_h] (its tail), [w_h, w_max] (the horizon
+//   layer), w_max at l.z = 0 and w_h at l.z = horizon_layer alpha: near the horizon G2 falls to 0 over l.z of
+//   order alpha (Lambda(l) = (sqrt(1 + alpha^2 (1 - l.z^2) / l.z^2) - 1) / 2), a feature of its own.
+// visit(panel) is called once per w panel with its nodes: weight (the rule's weight times d(xi) d(phi) / pi, phi
+// over [0, pi] standing for the whole circle, so that sum weight * integrand is the integral as dfg_quadrature
+// defines it), the half vector h = (sz cphi, sz sphi, cz) through cz, sz (cphi, sphi per panel), v.h and l.z.
+// A node whose l.z is not positive (only by rounding at w_max) has weight 0 and l.z 0. Returns the number of
+// nodes. The arrays let the callers' per-node arithmetic vectorize.
+constexpr int max_panel_nodes = 64;
+struct GaussPanel {
+  int n = 0;
+  double cphi = 1.0, sphi = 0.0;
+  double weight[max_panel_nodes];
+  double cz[max_panel_nodes];
+  double sz[max_panel_nodes];
+  double vh[max_panel_nodes];
+  double lz[max_panel_nodes];
+};
+
+// The height-correlated G2 of v and l from l.z alone: with l a unit vector Lambda(l) = (sqrt(l.z^2 + alpha^2 (1 -
+// l.z^2)) / l.z - 1) / 2 (Heitz 2014 eq. 72 with tan^2 = (1 - l.z^2) / l.z^2), so G2 = 1 / (1 + Lambda(v) +
+// Lambda(l)) = l.z / (l.z (1/2 + Lambda(v)) + sqrt(l.z^2 + alpha^2 (1 - l.z^2)) / 2) (Heitz 2014 eq. 99): one
+// square root where the kernel takes two. l.z = 0 gives 0: the horizon.
+inline double smith_g2_correlated_of_lz(double lz, double alpha, double lambda_v) {
+  return lz / (lz * (0.5 + lambda_v) + 0.5 * std::sqrt(lz * lz + alpha * alpha * (1.0 - lz * lz)));
+}
+
+void check_gauss_rule(const DfgGaussRule& r) {
+  for (const int n : {r.phi_outer, r.phi_middle, r.w_core, r.w_tail, r.w_horizon}) {
+    if (n < 1 || n > max_panel_nodes) throw std::invalid_argument("DfgGaussRule: node counts must be in [1, 64]");
+  }
+  if (!(r.core_end > 0.0) || !(r.horizon_layer > 0.0) || !(r.phi_middle_per_tau >= 0.0)) {
+    throw std::invalid_argument("DfgGaussRule: core_end, horizon_layer and phi_middle_per_tau must be positive");
+  }
+}
+
+template <class Visit>
+std::int64_t visit_gauss_nodes(double mu, double alpha, const DfgGaussRule& rule, Visit&& visit) {
+  const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));  // sin(theta_v); v = (s, 0, mu)
+  const double a2 = alpha * alpha;
+  std::int64_t count = 0;
+  const GaussLegendreRule& core_rule = gauss_legendre_rule(rule.w_core);
+  const GaussLegendreRule& tail_rule = gauss_legendre_rule(rule.w_tail);
+  const GaussLegendreRule& horizon_rule = gauss_legendre_rule(rule.w_horizon);
+  GaussPanel p;
+  double e[max_panel_nodes];
+  double w[max_panel_nodes];
+  // The w panel [w0, w1] of one phi line; line_weight is the phi rule's weight / pi.
+  const auto panel = [&](const GaussLegendreRule& r, double w0, double w1, double sx, double line_weight) {
+    if (!(w1 > w0)) return;
+    const int n = static_cast<int>(r.nodes.size());
+    const double half = 0.5 * (w1 - w0);
+    for (int k = 0; k < n; ++k) {
+      w[k] = w0 + half * (r.nodes[static_cast<std::size_t>(k)] + 1.0);
+      e[k] = std::expm1(w[k] * w[k]);  // e^u - 1 = tan^2(theta_h) / alpha^2
+    }
+    for (int k = 0; k < n; ++k) {
+      const double sec = std::sqrt(1.0 + a2 * e[k]);  // 1 / cos(theta_h) = sqrt(1 + tan^2)
+      const double cz = 1.0 / sec;
+      const double sz = std::sqrt(a2 * e[k]) * cz;  // sin(theta_h) = tan cos
+      const double vh = sz * sx + mu * cz;           // v.h, v = (s, 0, mu), h = (sz cphi, sz sphi, cz)
+      const double lz = 2.0 * vh * cz - mu;          // l = 2 (v.h) h - v
+      const bool above = lz > 0.0 && vh > 0.0;
+      // d(xi) = e^(-u) du = 2 w dw / (1 + e): the measure of the GGX sampling variable.
+      p.weight[k] = above ? line_weight * half * r.weights[static_cast<std::size_t>(k)] * 2.0 * w[k] / (1.0 + e[k]) : 0.0;
+      p.cz[k] = cz;
+      p.sz[k] = sz;
+      p.vh[k] = vh;
+      p.lz[k] = above ? lz : 0.0;
+    }
+    p.n = n;
+    count += n;
+    visit(static_cast<const GaussPanel&>(p));
+  };
+  // One line of constant phi with the phi rule's weight dphi (already in the phi measure).
+  const auto line = [&](double phi, double dphi) {
+    const double cphi = std::cos(phi), sphi = std::sin(phi);
+    const double sx = s * cphi;
+    p.cphi = cphi;
+    p.sphi = sphi;
+    // l.z = R cos(2 theta_h - delta), R = sqrt(sx^2 + mu^2), tan(delta) = sx / mu (l.z = sx sin(2 theta_h) + mu
+    // cos(2 theta_h)): the horizon at theta_h = (delta + pi/2) / 2, l.z = c at (delta + acos(c / R)) / 2.
+    const double big_r = std::sqrt(sx * sx + mu * mu);
+    const double delta = std::atan2(sx, mu);
+    const auto w_at = [&](double theta) {  // w = sqrt(ln(1 + tan^2(theta_h) / alpha^2))
+      const double t = std::tan(theta) / alpha;
+      return std::sqrt(std::log1p(t * t));
+    };
+    const double w_max = w_at(0.5 * (delta + 0.5 * pi));
+    const double c = rule.horizon_layer * alpha;
+    const double theta_h = c < big_r ? 0.5 * (delta + std::acos(c / big_r)) : 0.0;
+    // (A line whose l.z stays below c everywhere, theta_h <= 0, has no layer of its own: its core and tail
+    // panels reach the horizon.)
+    const double w_h = theta_h > 0.0 ? std::min(w_at(theta_h), w_max) : w_max;
+    const double w_core = std::min(w_h, rule.core_end);
+    const double line_weight = dphi * inv_pi;  // d(phi) / pi: phi over [0, pi] stands for the full circle
+    panel(core_rule, 0.0, w_core, sx, line_weight);
+    panel(tail_rule, w_core, w_h, sx, line_weight);
+    panel(horizon_rule, w_h, w_max, sx, line_weight);
+  };
+  const GaussLegendreRule& outer = gauss_legendre_rule(rule.phi_outer);
+  for (int i = 0; i < rule.phi_outer; ++i) {
+    const double x = outer.nodes[static_cast<std::size_t>(i)], wt = outer.weights[static_cast<std::size_t>(i)];
+    line(pi / 6.0 * (x + 1.0), pi / 6.0 * wt);                 // phi in [0, pi/3]
+    line(2.0 * pi / 3.0 + pi / 6.0 * (x + 1.0), pi / 6.0 * wt);  // phi in [2 pi/3, pi]
+  }
+  // cos(phi) = x = eps sinh(tau) over x in [-1/2, 1/2]: d(phi) = eps cosh(tau) d(tau) / sqrt(1 - x^2).
+  const double eps = mu / std::max(s, 1e-300);
+  const double tau_end = std::asinh(0.5 / eps);
+  // The integrand's features are of unit scale in tau, and tau_end grows as ln(1 / eps): nodes in proportion.
+  const int n_middle = std::clamp(static_cast<int>(std::ceil(rule.phi_middle_per_tau * tau_end)), rule.phi_middle, max_panel_nodes);
+  const GaussLegendreRule& middle = gauss_legendre_rule(n_middle);
+  for (int i = 0; i < n_middle; ++i) {
+    const double tau = tau_end * middle.nodes[static_cast<std::size_t>(i)];
+    const double x = eps * std::sinh(tau);
+    line(std::acos(x), tau_end * middle.weights[static_cast<std::size_t>(i)] * eps * std::cosh(tau) / std::sqrt(1.0 - x * x));
+  }
+  return count;
+}
+
 }  // namespace
 
 DfgValue dfg_quadrature(double mu, double alpha, double tolerance) {
@@ -104,14 +239,39 @@ DfgValue dfg_quadrature(double mu, double alpha, double tolerance) {
   return value;
 }
 
-DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol) {
+DfgValue dfg_gauss(double mu, double alpha, const DfgGaussRule& rule) {
+  check_gauss_rule(rule);
+  const double lambda_v = lambda_of_view(mu, alpha);
+  double a = 0.0, b = 0.0;
+  double ga[max_panel_nodes], gb[max_panel_nodes];
+  const std::int64_t n = visit_gauss_nodes(mu, alpha, rule, [&](const GaussPanel& p) {
+    for (int k = 0; k < p.n; ++k) {
+      // G2 (V.H) / (N.V N.H) (1 - Fc, Fc): the integrand of A and B in the (xi, phi) measure (Integrand::eval).
+      const double g = p.weight[k] * smith_g2_correlated_of_lz(p.lz[k], alpha, lambda_v) * p.vh[k] / (mu * p.cz[k]);
+      const double fc = kernel::F_schlick(p.vh[k], 0.0);  // Schlick 1994: (1 - V.H)^5 at F0 = 0 (fresnel.sl)
+      ga[k] = (1.0 - fc) * g;
+      gb[k] = fc * g;
+    }
+    for (int k = 0; k < p.n; ++k) {
+      a += ga[k];
+      b += gb[k];
+    }
+  });
+  DfgValue value;
+  value.a = a;
+  value.b = b;
+  value.evaluations = n;
+  return value;
+}
+
+DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol, double abs_tol) {
   const Integrand f = make_integrand(mu, alpha);
   // The same variables and horizon bound as dfg_quadrature: (phi, u) over [0, pi] (every integrand below is
   // even in phi: l.x and l.z are, l.y is odd and its integral vanishes), u = ln(1 + tan^2(theta_h) / alpha^2).
   const auto u_max = [&](double phi) { return f.u_max(phi); };
   QuadratureOptions options;
   options.rel_tol = rel_tol;
-  options.abs_tol = 1e-10;
+  options.abs_tol = abs_tol;
   options.initial_intervals = 4;
   options.max_subdivisions = 4000;
   QuadratureOptions inner = options;
@@ -163,6 +323,71 @@ DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol) {
   return m;
 }
 
+DfgGaussRule dfg_gauss_check_rule() {
+  const DfgGaussRule r;
+  DfgGaussRule fine = r;
+  fine.phi_outer = r.phi_outer * 3 / 2;
+  fine.phi_middle = r.phi_middle * 3 / 2;
+  fine.phi_middle_per_tau = r.phi_middle_per_tau * 1.5;
+  fine.w_core = r.w_core * 3 / 2;
+  fine.w_tail = r.w_tail * 3 / 2;
+  fine.w_horizon = r.w_horizon * 3 / 2;
+  return fine;
+}
+
+DfgLobeMoments dfg_lobe_moments_gauss(double mu, double alpha, const DfgGaussRule& rule) {
+  check_gauss_rule(rule);
+  const double lambda_v = lambda_of_view(mu, alpha);
+  const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+  // Each node's weights of A and B (in the measure dl, as dfg_lobe_moments' at()) and its l, kept for the second
+  // pass, which sums over the same nodes.
+  struct Node {
+    double wa, wb;
+    Vec3 l;
+  };
+  std::vector<Node> nodes;
+  nodes.reserve(1024);
+  visit_gauss_nodes(mu, alpha, rule, [&](const GaussPanel& p) {
+    for (int k = 0; k < p.n; ++k) {
+      if (!(p.weight[k] > 0.0)) continue;
+      const double g = p.weight[k] * smith_g2_correlated_of_lz(p.lz[k], alpha, lambda_v) * p.vh[k] / (mu * p.cz[k]);
+      const double fc = kernel::F_schlick(p.vh[k], 0.0);  // Schlick 1994 at F0 = 0 (fresnel.sl)
+      // l = 2 (v.h) h - v with h = (sz cphi, sz sphi, cz), v = (s, 0, mu).
+      const Vec3 l{2.0 * p.vh[k] * p.sz[k] * p.cphi - s, 2.0 * p.vh[k] * p.sz[k] * p.sphi, p.lz[k]};
+      nodes.push_back({(1.0 - fc) * g, fc * g, l});
+    }
+  });
+  // The same quantities as dfg_lobe_moments, over the nodes: weights, mean directions (l.y's integral vanishes
+  // by symmetry), then the spreads 1 - |m_k| = integral w_k |l - d_k|^2 / 2 / integral w_k.
+  double first[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  for (const Node& n : nodes) {
+    first[0] += n.wa;
+    first[1] += n.wb;
+    first[2] += n.wa * n.l.x;
+    first[3] += n.wa * n.l.z;
+    first[4] += n.wb * n.l.x;
+    first[5] += n.wb * n.l.z;
+  }
+  DfgLobeMoments m;
+  Vec3 d[2];
+  for (int k = 0; k < 2; ++k) {
+    const double w = first[k];
+    m.weight[k] = w;
+    const double mx = w > 0.0 ? first[2 + 2 * k] / w : 0.0;
+    const double mz = w > 0.0 ? first[3 + 2 * k] / w : 1.0;
+    m.angle[k] = std::atan2(-mx, mz);  // R lies at -x
+    d[k] = normalize(Vec3{mx, 0.0, mz});
+  }
+  double second[2] = {0.0, 0.0};
+  for (const Node& n : nodes) {
+    const Vec3 ea = n.l - d[0], eb = n.l - d[1];
+    second[0] += n.wa * 0.5 * dot(ea, ea);  // 1 - l.d = |l - d|^2 / 2 for unit l and d
+    second[1] += n.wb * 0.5 * dot(eb, eb);
+  }
+  for (int k = 0; k < 2; ++k) m.spread[k] = m.weight[k] > 0.0 ? second[k] / m.weight[k] : 0.0;
+  return m;
+}
+
 DfgValue dfg_sampled(double mu, double alpha, int samples) {
   const Integrand f = make_integrand(mu, alpha);
   double a_sum = 0.0;
@@ -207,7 +432,8 @@ DfgTable bake_dfg(const DfgOptions& options) {
       const double rough = (j + 0.5) / options.size;
       const double alpha = rough * rough;  // alpha = perceptual roughness squared (Burley 2012; Karis 2013)
       const DfgValue v = options.samples > 0 ? dfg_sampled(mu, alpha, options.samples)
-                                             : dfg_quadrature(mu, alpha, options.tolerance);
+                         : options.adaptive  ? dfg_quadrature(mu, alpha, options.tolerance)
+                                             : dfg_gauss(mu, alpha);
       double* t = &table.texels[static_cast<std::size_t>(k) * 3];
       t[0] = v.a;
       t[1] = v.b;
@@ -216,6 +442,28 @@ DfgTable bake_dfg(const DfgOptions& options) {
       evaluations[static_cast<std::size_t>(k)] = v.evaluations;
     }
   });
+  if (options.samples == 0 && !options.adaptive) {
+    // The fixed rule has no error estimate of its own: its difference to the finer rule (dfg_gauss_check_rule,
+    // 1.5 times the nodes in every direction, itself within 4e-8 of the adaptive quadrature wherever tried) at
+    // the texels of the first two and the last columns and rows, where the rule's error is largest (grazing view,
+    // the smoothest and roughest rows), and of every 8th column and row (docs/envmap.md).
+    const auto edge = [&](int i) { return i < 2 || i == options.size - 1; };
+    std::vector<std::size_t> subset;
+    for (int j = 0; j < options.size; ++j) {
+      for (int i = 0; i < options.size; ++i) {
+        if (edge(i) || edge(j) || (i % 8 == 0 && j % 8 == 0)) subset.push_back(static_cast<std::size_t>(j) * n + static_cast<std::size_t>(i));
+      }
+    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, subset.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t q = r.begin(); q != r.end(); ++q) {
+        const std::size_t k = subset[q];
+        const double rough = (static_cast<double>(k / n) + 0.5) / options.size;
+        const DfgValue fine = dfg_gauss((static_cast<double>(k % n) + 0.5) / options.size, rough * rough, dfg_gauss_check_rule());
+        errors[k] = std::max(std::abs(fine.a - table.texels[k * 3]), std::abs(fine.b - table.texels[k * 3 + 1]));
+        evaluations[k] += fine.evaluations;
+      }
+    });
+  }
   for (std::size_t k = 0; k < n * n; ++k) {
     table.max_error_estimate = std::max(table.max_error_estimate, errors[k]);
     table.evaluations += evaluations[k];

@@ -33,8 +33,9 @@ namespace shadelab {
 struct DfgOptions {
   int size = 128;
   bool multiscatter = false;
-  int samples = 0;             // 0: adaptive quadrature; > 0: Hammersley importance sampling
-  double tolerance = 1e-6;     // absolute error per texel and channel (quadrature)
+  int samples = 0;             // 0: quadrature (dfg_gauss, or dfg_quadrature when adaptive); > 0: Hammersley sampling
+  bool adaptive = false;       // the adaptive quadrature to `tolerance` instead of the fixed rule (the reference)
+  double tolerance = 1e-6;     // absolute error per texel and channel (adaptive quadrature)
 };
 
 struct DfgTable {
@@ -59,6 +60,23 @@ struct DfgValue {
   std::int64_t evaluations = 0;
 };
 DfgValue dfg_quadrature(double mu, double alpha, double tolerance = 1e-6);
+
+// The same A and B by a fixed product Gauss-Legendre rule in the same measure (dfg.cpp says which variables
+// and panels): no error control of its own, its error measured against dfg_quadrature instead (dfg_test.cpp,
+// docs/envmap.md). The node counts are per texel; `evaluations` counts the nodes.
+struct DfgGaussRule {
+  int phi_outer = 6;           // nodes on each of phi in [0, pi/3] and [2 pi/3, pi]
+  int phi_middle = 12;         // nodes over cos(phi) in [-1/2, 1/2], in tau (cos(phi) = eps sinh(tau)), at least
+  double phi_middle_per_tau = 3.3;  // and this many per unit of tau's range (it grows as ln(sin(theta_v) / N.V))
+  int w_core = 16;             // nodes on w in [0, min(w_h, core_end)]
+  int w_tail = 8;              // nodes on [core_end, w_h] where the lobe's core ends before the horizon layer
+  int w_horizon = 8;           // nodes on [w_h, w_max], the horizon layer l.z < horizon_layer alpha
+  double core_end = 3.0;       // w at the end of the core panel (xi = 1 - e^-9)
+  double horizon_layer = 2.0;  // the horizon layer's depth in l.z, in units of alpha
+};
+DfgValue dfg_gauss(double mu, double alpha, const DfgGaussRule& rule = {});
+// The default rule with 1.5 times its nodes in every direction: bake_dfg's error estimate is the difference to it.
+DfgGaussRule dfg_gauss_check_rule();
 // The same by `samples` Hammersley points importance-sampled from D cos(theta_h).
 DfgValue dfg_sampled(double mu, double alpha, int samples);
 
@@ -69,13 +87,17 @@ DfgValue dfg_sampled(double mu, double alpha, int samples);
 // n and v; negative: past n, away from R), and its spread 1 - |m_k| = integral w_k (1 - l.m_k/|m_k|) dl /
 // integral w_k dl (taken in a second pass, with 1 - l.d = |l - d|^2 / 2, so that it keeps its relative
 // precision for the thinnest lobes). Used by the split sum's lobe-matched lookup (split_sum_lobes.h).
-// rel_tol: relative tolerance of every integral. mu in (0, 1], alpha > 0.
+// rel_tol: relative tolerance of every integral, abs_tol its absolute floor (B at near-normal view on smooth
+// surfaces is as small as 1e-9: a floor of 1e-10 leaves its moments loose there). mu in (0, 1], alpha > 0.
 struct DfgLobeMoments {
   double weight[2] = {0.0, 0.0};
   double angle[2] = {0.0, 0.0};
   double spread[2] = {0.0, 0.0};
 };
-DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol = 1e-7);
+DfgLobeMoments dfg_lobe_moments(double mu, double alpha, double rel_tol = 1e-7, double abs_tol = 1e-10);
+// The same moments by dfg_gauss's fixed rule (both passes over the same nodes): what the lobe table uses, its
+// error against dfg_lobe_moments measured in split_sum_lobes_test.cpp.
+DfgLobeMoments dfg_lobe_moments_gauss(double mu, double alpha, const DfgGaussRule& rule = {});
 
 // Throws std::invalid_argument naming the option when size or samples is out of range or tolerance <= 0.
 DfgTable bake_dfg(const DfgOptions& options);

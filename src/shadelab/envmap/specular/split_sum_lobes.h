@@ -24,14 +24,17 @@
 // Table: SPLIT_SUM_LOBE_SIZE^2 texels as the DFG table's (dfg.h): x = N.V = (i + 0.5) / size, y = perceptual
 // roughness r = (j + 0.5) / size, alpha = r^2, read bilinearly between texel centres, clamped at the edges
 // but below the first row's centre, where it goes linearly to the mirror (r = 0: angle acos(N.V), roughness 0).
-// Computed row by row at first use, by dfg_lobe_moments (relative tolerance 1e-5) and the inverse of
-// spread(alpha) (log-log interpolation between 513 nodes, alpha in [1e-4, 1]).
+// Computed row by row at first use, by dfg_lobe_moments_gauss (the fixed rule split_sum_lobe_rule(); within
+// 1.2e-4 rad and 2e-6 in roughness of the texels from the adaptive moments at relative tolerance 1e-9, measured
+// in split_sum_lobes_test.cpp) and the inverse of spread(alpha) (log-log interpolation between 513 nodes,
+// alpha in [1e-4, 1]).
 #pragma once
 
 #include <memory>
 #include <mutex>
 #include <vector>
 
+#include "shadelab/envmap/specular/dfg.h"
 #include "shadelab/kernels/kernels.h"
 
 namespace shadelab {
@@ -50,12 +53,15 @@ struct SplitSumLobes {
   SplitSumLobe b;  // the f90 B part
 };
 
+// The fixed rule the table's moments are taken with (dfg_lobe_moments_gauss).
+DfgGaussRule split_sum_lobe_rule();
+
 // One texel's lobes from the moments at (mu = N.V, perceptual roughness r).
 SplitSumLobes split_sum_lobes_at(double mu, double roughness);
 
 constexpr int split_sum_lobe_size = 32;
 
-// The table, each row (a roughness, split_sum_lobe_size texels, about 0.1 s) computed at its first read, once,
+// The table, each row (a roughness, split_sum_lobe_size texels, a few ms) computed at its first read, once,
 // by whichever thread reads it first (others reading it wait; no parallel work inside, so a reader inside a
 // TBB task cannot be handed a task that waits on the same row). A render reads the rows its materials'
 // roughness values need; all() computes the rest in parallel.
