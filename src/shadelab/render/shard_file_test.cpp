@@ -340,6 +340,7 @@ TEST(SceneFingerprint, EveryMemberThatChangesTheImageChangesIt) {
       {"material.base_color_texture", [](Scene& s) { s.materials[0].base_color_texture = -1; }},
       {"material.metallic_roughness_texture", [](Scene& s) { s.materials[0].metallic_roughness_texture = -1; }},
       {"material.base_color_texture index", [](Scene& s) { s.materials[0].base_color_texture = 1; }},
+      {"material.param_textures added", [](Scene& s) { s.materials[0].param_textures.push_back({"kd", 0, -1, ParamTexture::Use::multiply, {}}); }},
       {"material.gloss_encoding.n_black", [](Scene& s) { s.materials[0].gloss_encoding.n_black = 3; }},
       {"material.gloss_encoding.n_white", [](Scene& s) { s.materials[0].gloss_encoding.n_white = 4096; }},
       {"material.uv_scale.x", [](Scene& s) { s.materials[0].uv_scale.x = 2; }},
