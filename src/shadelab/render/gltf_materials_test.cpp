@@ -539,7 +539,7 @@ TEST(GltfExtensions, TheExampleSceneRenders) {
   double sum = 0.0;
   for (float v : r->beauty.data) {
     ASSERT_TRUE(std::isfinite(v));
-    sum += v;
+    sum += static_cast<double>(v);
   }
   EXPECT_GT(sum, 0.0);
 }
