@@ -139,8 +139,12 @@ class SceneHasher {
     add(name), add(model), add(params);
     add(kd_texture), add(ks_texture), add(gloss_texture), add(normal_texture), add(base_color_texture),
         add(metallic_roughness_texture);
-    add(static_cast<std::uint64_t>(param_textures.size()));
-    for (const ParamTexture& p : param_textures) add(p);
+    // Only when there are any, so that the fingerprints of scenes without them (every scene before they existed)
+    // stay what they were (SceneFingerprint.PathsThreadsAndTheShardInfoFieldsLeaveItAlone pins one).
+    if (!param_textures.empty()) {
+      add(static_cast<std::uint64_t>(param_textures.size()));
+      for (const ParamTexture& p : param_textures) add(p);
+    }
     add(gloss_encoding), add(uv_scale), add(emission);
   }
   void add(const ParamTexture& p) {
