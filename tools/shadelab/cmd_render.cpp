@@ -193,6 +193,7 @@ void run_render(const RenderCliOptions& o) {
   check_range("--threads", o.threads_given, o.threads, 0, max_render_threads);
   if (!std::isfinite(o.exposure)) throw UsageError("--exposure: must be finite");
   Scene scene = o.scene.empty() ? built_in_scene() : unwrap(load_scene(o.scene));
+  for (const std::string& w : scene.warnings) std::cerr << "shadelab: warning: " << w << '\n';  // one line each
   if (o.seed_given) scene.settings.seed = parse_seed("--seed", o.seed);
   RenderOptions ro;
   ro.spp = o.spp_given ? o.spp : -1;

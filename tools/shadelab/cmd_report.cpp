@@ -147,6 +147,7 @@ MaskedFigures masked(const Image& game, const Image& ref, const std::vector<int>
 void run_report(const ReportOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   Scene scene = o.scene.empty() ? built_in_scene() : unwrap(load_scene(o.scene));
+  for (const std::string& w : scene.warnings) std::cerr << "shadelab: warning: " << w << '\n';  // one line each
   if (o.spp < 1) throw UsageError(fmt::format("--spp: {} must be >= 1", o.spp));
   if (o.width < 0 || o.width > 4096) throw UsageError(fmt::format("--width: {} is out of range [16, 4096]", o.width));
   if (o.width > 0) {

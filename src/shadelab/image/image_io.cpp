@@ -526,6 +526,19 @@ void decode_srgb(const T* samples, int channels, const float* table, Image& imag
   }
 }
 
+// The alpha channel of stb's interleaved samples (grey + alpha or RGBA) through `table` (code / max) into R, G and B;
+// 1 where the image has no alpha channel.
+template <typename T>
+void decode_alpha(const T* samples, int channels, const float* table, Image& image) {
+  const std::size_t count = image.pixel_count();
+  const auto nc = static_cast<std::size_t>(channels);
+  float* out = image.data.data();
+  const bool has_alpha = channels == 2 || channels == 4;
+  for (std::size_t i = 0; i < count; ++i) {
+    out[3 * i] = out[3 * i + 1] = out[3 * i + 2] = has_alpha ? table[samples[i * nc + nc - 1]] : 1.0f;
+  }
+}
+
 std::uint32_t be32(const unsigned char* p) {
   return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | std::uint32_t{p[3]};
 }
@@ -663,16 +676,24 @@ Result<Image> read_png(const fs::path& path, ReadInfo& info, std::uint64_t budge
       return read_error(path, "corrupt or truncated PNG file (" + stb_reason() + ")");
     }
     image = Image(w, h);
-    decode_srgb(pixels.get(), n, png == PngSamples::linear ? linear_code_table(16).data() : srgb16_to_linear_table().data(),
-                image);
+    if (png == PngSamples::alpha) {
+      decode_alpha(pixels.get(), n, linear_code_table(16).data(), image);
+    } else {
+      decode_srgb(pixels.get(), n, png == PngSamples::linear ? linear_code_table(16).data() : srgb16_to_linear_table().data(),
+                  image);
+    }
   } else {
     std::unique_ptr<stbi_uc, StbiFree> pixels(stbi_load_from_memory(bytes->data(), size, &w, &h, &n, 0));
     if (!pixels) {
       return read_error(path, "corrupt or truncated PNG file (" + stb_reason() + ")");
     }
     image = Image(w, h);
-    decode_srgb(pixels.get(), n, png == PngSamples::linear ? linear_code_table(8).data() : srgb8_to_linear_table().data(),
-                image);
+    if (png == PngSamples::alpha) {
+      decode_alpha(pixels.get(), n, linear_code_table(8).data(), image);
+    } else {
+      decode_srgb(pixels.get(), n, png == PngSamples::linear ? linear_code_table(8).data() : srgb8_to_linear_table().data(),
+                  image);
+    }
   }
   info.sample_type = sixteen ? "uint16" : "uint8";
   info.channels = n;
@@ -1336,6 +1357,9 @@ Result<Image> read_image(const fs::path& path, ReadInfo* info, std::uint64_t bud
   const Format format = format_of(path);
   if (format == Format::unknown) {
     return read_error(path, unknown_extension_reason());
+  }
+  if (png == PngSamples::alpha && format != Format::png) {
+    return read_error(path, "an alpha channel is read from PNG files only");
   }
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);

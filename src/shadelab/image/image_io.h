@@ -71,7 +71,9 @@ struct ReadInfo {
 
 // How a PNG's samples become values: decoded from sRGB (pictures: the default), or as stored, code / 255 or code /
 // 65535 (data such as the lookup tables engines ship linearly: `shadelab bake lut`, `audit-lut`).
-enum class PngSamples { srgb, linear };
+// `alpha`: the PNG's alpha channel, code / 255 (or / 65535), in R, G and B; 1 where the file has no alpha (glTF's
+// specularTexture and sheenRoughnessTexture keep their data there). Other formats have no alpha to read: an error.
+enum class PngSamples { srgb, linear, alpha };
 
 // Reads an image; `info`, when given, is filled on success.
 Result<Image> read_image(const std::filesystem::path& path, ReadInfo* info = nullptr);

@@ -231,6 +231,7 @@ class GameShader {
       if (m_options.specular_ambient && info.exponent > 0.0 && m_baked != nullptr && !m_baked->specular.levels.empty()) {
         double n_phong = info.exponent;
         const Material& m = m_scene.materials[static_cast<std::size_t>(hit.material)];
+        if (!m.param_textures.empty()) n_phong = f->game_phong_exponent();  // the hit's textured roughness
         if (m.gloss_texture >= 0) {
           const Vec2 uv{hit.uv.x * m.uv_scale.x, hit.uv.y * m.uv_scale.y};
           const double g = sample_texture(m_scene.textures[static_cast<std::size_t>(m.gloss_texture)], uv).r;

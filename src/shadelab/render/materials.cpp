@@ -1,10 +1,43 @@
 #include "shadelab/render/materials.h"
 
 #include <algorithm>
+#include <cmath>
+#include <string_view>
 
 #include "shadelab/core/text.h"
 
 namespace shadelab {
+
+namespace {
+
+const ParamSpec* find_spec(const ModelInfo& info, std::string_view name) {
+  for (const ParamSpec& s : info.params) {
+    if (s.name == name) return &s;
+  }
+  return nullptr;
+}
+
+// A parameter texture drives a colour or scalar parameter of the model, with a channel that fits it, from a
+// texture of the scene (scene.h, ParamTexture); scene_json checks the same with the field's pointer.
+Result<bool> check_param_texture(const ModelInfo& info, const Scene& scene, const ParamTexture& p) {
+  if (p.texture < 0 || static_cast<std::size_t>(p.texture) >= scene.textures.size()) {
+    return make_error("texture " + std::to_string(p.texture) + " for parameter '" + printable(p.param) + "' does not exist");
+  }
+  const ParamSpec* spec = find_spec(info, p.param);
+  if (spec == nullptr) return make_error("model '" + info.name + "' has no parameter '" + printable(p.param) + "' for its texture");
+  if (p.use == ParamTexture::Use::anisotropy) {
+    if (p.param != "anisotropy_strength" || find_spec(info, "anisotropy_rotation") == nullptr) {
+      return make_error("an anisotropy texture drives anisotropy_strength and anisotropy_rotation");
+    }
+    return true;
+  }
+  if (spec->kind == ParamKind::color ? p.channel != -1 : !(spec->kind == ParamKind::scalar && p.channel >= 0 && p.channel <= 2)) {
+    return make_error("parameter '" + p.param + "' cannot take a texture with channel " + std::to_string(p.channel));
+  }
+  return true;
+}
+
+}  // namespace
 
 Result<bool> MaterialSet::prepare(const Scene& scene) {
   m_scene = &scene;
@@ -35,6 +68,9 @@ Result<bool> MaterialSet::prepare(const Scene& scene) {
       if (m.ks_texture >= 0 && !has(rt.ks_param.c_str())) return make_error(where + ": model '" + m.model + "' has no parameter " + rt.ks_param + " for its ks texture");
       if (m.base_color_texture >= 0 && !has("base_color")) return make_error(where + ": model '" + m.model + "' has no parameter base_color for its base_color texture");
       if (m.metallic_roughness_texture >= 0 && !(has("metallic") && has("perceptual_roughness"))) return make_error(where + ": model '" + m.model + "' has no parameters metallic and perceptual_roughness for its metallic_roughness texture");
+      for (const ParamTexture& p : m.param_textures) {
+        if (auto ok = check_param_texture(*rt.info, scene, p); !ok) return make_error(where + ": " + ok.error().message);
+      }
     } else if (m.brdf) {
       rt.brdf = m.brdf;
     }
@@ -84,6 +120,27 @@ const Brdf* MaterialSet::brdf(int material, Vec2 uv, BrdfPtr& holder) const {
     v.set_numbers("metallic", {std::clamp(rt.base->scalar("metallic") * t.b, 0.0, 1.0)});
     // perceptual_roughness' range starts at 0.01 (filament.cpp): a black texel is the smoothest it allows.
     v.set_numbers("perceptual_roughness", {std::clamp(rt.base->scalar("perceptual_roughness") * t.g, 0.01, 1.0)});
+  }
+  // Parameter textures (gltf, principled-v1, layered, glTF files): factor x texel, clamped to the range.
+  for (const ParamTexture& p : m.param_textures) {
+    const ParamSpec* spec = find_spec(*rt.info, p.param);
+    const Rgb t = sample_texture(m_scene->textures[static_cast<std::size_t>(p.texture)], p.transform.apply(uv));
+    if (p.use == ParamTexture::Use::anisotropy) {
+      // KHR_materials_anisotropy: strength x blue; the direction (2 red - 1, 2 green - 1) in the tangent frame turns
+      // the factor's rotation by its angle (a texel of (1, 0.5) leaves it; (0.5, 0.5) has no direction: kept).
+      v.set_numbers("anisotropy_strength", {std::clamp(rt.base->scalar("anisotropy_strength") * t.b, spec->min, spec->max)});
+      const double x = 2.0 * t.r - 1.0;
+      const double y = 2.0 * t.g - 1.0;
+      const ParamSpec* rotation = find_spec(*rt.info, "anisotropy_rotation");
+      const double angle = x == 0.0 && y == 0.0 ? 0.0 : std::atan2(y, x);
+      v.set_numbers("anisotropy_rotation", {std::clamp(rt.base->scalar("anisotropy_rotation") + angle, rotation->min, rotation->max)});
+    } else if (p.channel < 0) {
+      const Rgb f = rt.base->color(p.param);
+      v.set_numbers(p.param, {std::clamp(f.r * t.r, spec->min, spec->max), std::clamp(f.g * t.g, spec->min, spec->max),
+                              std::clamp(f.b * t.b, spec->min, spec->max)});
+    } else {
+      v.set_numbers(p.param, {std::clamp(rt.base->scalar(p.param) * t[p.channel], spec->min, spec->max)});
+    }
   }
   auto b = rt.info->create(v);
   if (!b) return rt.brdf.get();  // validated at load; a texture cannot make it fail

@@ -134,12 +134,24 @@ class SceneHasher {
   }
   void add(const Material& m) {
     const auto& [name, model, params, brdf, kd_texture, ks_texture, gloss_texture, normal_texture, base_color_texture,
-                 metallic_roughness_texture, gloss_encoding, uv_scale, emission] = m;
+                 metallic_roughness_texture, param_textures, gloss_encoding, uv_scale, emission] = m;
     (void)brdf;  // built from model and params
     add(name), add(model), add(params);
     add(kd_texture), add(ks_texture), add(gloss_texture), add(normal_texture), add(base_color_texture),
         add(metallic_roughness_texture);
+    // Only when there are any, so that the fingerprints of scenes without them (every scene before they existed)
+    // stay what they were (SceneFingerprint.PathsThreadsAndTheShardInfoFieldsLeaveItAlone pins one).
+    if (!param_textures.empty()) {
+      add(static_cast<std::uint64_t>(param_textures.size()));
+      for (const ParamTexture& p : param_textures) add(p);
+    }
     add(gloss_encoding), add(uv_scale), add(emission);
+  }
+  void add(const ParamTexture& p) {
+    const auto& [param, texture, channel, use, transform] = p;
+    add(param), add(texture), add(channel), add(static_cast<int>(use));
+    const auto& [m00, m01, m02, m10, m11, m12] = transform;
+    add(m00), add(m01), add(m02), add(m10), add(m11), add(m12);
   }
   void add(const SphereShape& s) {
     const auto& [center, radius, material] = s;
@@ -200,8 +212,10 @@ class SceneHasher {
     add(rr_depth);
   }
   void add(const Scene& s) {
-    const auto& [source, camera, textures, materials, spheres, quads, disks, meshes, lights, environment, settings] = s;
-    (void)source;  // the path, for messages
+    const auto& [source, camera, textures, materials, spheres, quads, disks, meshes, lights, environment, settings,
+                 warnings] = s;
+    (void)source;    // the path, for messages
+    (void)warnings;  // messages about what was read past; they do not change the image
     add(camera), add(textures), add(materials), add(spheres), add(quads), add(disks), add(meshes), add(lights),
         add(environment), add(settings);
   }

@@ -296,9 +296,12 @@ Scene fingerprint_scene() {
 // member added to any of them stops this test compiling until a change of it is added to the list below
 // (and shard_file.cpp stops compiling until it is hashed there).
 [[maybe_unused]] void every_member_is_in_the_list(Scene& s, Material& m, Texture& t, MeshShape& mesh, Environment& e,
-                                                  SkyModel& sky, Camera& c, RenderSettings& r) {
-  [[maybe_unused]] auto& [s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10] = s;
-  [[maybe_unused]] auto& [m0, m1, m2, m3, m4, m5, m6, m7, m8, m9, m10, m11, m12] = m;
+                                                  SkyModel& sky, Camera& c, RenderSettings& r, ParamTexture& p,
+                                                  UvTransform& u) {
+  [[maybe_unused]] auto& [s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10, s11] = s;  // s11: warnings, not hashed
+  [[maybe_unused]] auto& [m0, m1, m2, m3, m4, m5, m6, m7, m8, m9, m10, m11, m12, m13] = m;
+  [[maybe_unused]] auto& [p0, p1, p2, p3, p4] = p;
+  [[maybe_unused]] auto& [u0, u1, u2, u3, u4, u5] = u;
   [[maybe_unused]] auto& [t0, t1, t2, t3] = t;
   [[maybe_unused]] auto& [h0, h1, h2, h3, h4, h5] = mesh;
   [[maybe_unused]] auto& [e0, e1, e2, e3, e4, e5, e6] = e;
@@ -340,6 +343,15 @@ TEST(SceneFingerprint, EveryMemberThatChangesTheImageChangesIt) {
       {"material.base_color_texture", [](Scene& s) { s.materials[0].base_color_texture = -1; }},
       {"material.metallic_roughness_texture", [](Scene& s) { s.materials[0].metallic_roughness_texture = -1; }},
       {"material.base_color_texture index", [](Scene& s) { s.materials[0].base_color_texture = 1; }},
+      // Each member of a parameter texture: variants of one binding, all different from each other (seen, below).
+      {"material.param_textures added", [](Scene& s) { s.materials[0].param_textures.push_back({"kd", 0, -1, ParamTexture::Use::multiply, {}}); }},
+      {"param_texture.param", [](Scene& s) { s.materials[0].param_textures.push_back({"ks", 0, -1, ParamTexture::Use::multiply, {}}); }},
+      {"param_texture.texture", [](Scene& s) { s.materials[0].param_textures.push_back({"kd", 1, -1, ParamTexture::Use::multiply, {}}); }},
+      {"param_texture.channel", [](Scene& s) { s.materials[0].param_textures.push_back({"kd", 0, 1, ParamTexture::Use::multiply, {}}); }},
+      {"param_texture.use", [](Scene& s) { s.materials[0].param_textures.push_back({"kd", 0, -1, ParamTexture::Use::anisotropy, {}}); }},
+      {"param_texture.transform", [](Scene& s) {
+         s.materials[0].param_textures.push_back({"kd", 0, -1, ParamTexture::Use::multiply, make_gltf_uv_transform({0.0, 0.5}, 0.0, {1.0, 1.0})});
+       }},
       {"material.gloss_encoding.n_black", [](Scene& s) { s.materials[0].gloss_encoding.n_black = 3; }},
       {"material.gloss_encoding.n_white", [](Scene& s) { s.materials[0].gloss_encoding.n_white = 4096; }},
       {"material.uv_scale.x", [](Scene& s) { s.materials[0].uv_scale.x = 2; }},

@@ -16,6 +16,7 @@
 #include <map>
 #include <new>
 #include <optional>
+#include <span>
 #include <sstream>
 #include <string>
 #include <unordered_map>
@@ -645,6 +646,17 @@ struct GltfBuilder {
   std::uint64_t instances = 0;
 };
 
+constexpr std::string_view kExtensionsRead[] = {
+    "KHR_materials_anisotropy", "KHR_materials_clearcoat",          "KHR_materials_emissive_strength",
+    "KHR_materials_ior",        "KHR_materials_sheen",              "KHR_materials_specular",
+    "KHR_texture_transform"};
+
+std::string join_names(std::span<const std::string_view> names) {
+  std::string out;
+  for (std::string_view n : names) out += (out.empty() ? "" : ", ") + std::string(n);
+  return out;
+}
+
 // glTF images are not needed for geometry: skip decoding them.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
@@ -745,8 +757,12 @@ Result<GltfRead> read_gltf_parts(const std::filesystem::path& path, bool split) 
   }
   if (!ok && !files.refused.empty()) return mesh_error(path, "refused to read " + files.refused);
   if (!ok) return mesh_error(path, "cannot read glTF: " + one_line(err.empty() ? warn : err));
-  if (!model.extensionsRequired.empty()) {
-    return mesh_error(path, "required extension " + model.extensionsRequired.front() + " is not supported");
+  for (const std::string& required : model.extensionsRequired) {
+    const auto known = gltf_extensions_read();
+    if (std::find(known.begin(), known.end(), required) == known.end()) {
+      return mesh_error(path, "extensionsRequired: extension '" + printable(required, max_library_bytes) +
+                                  "' is not supported (shadelab reads " + join_names(known) + ")");
+    }
   }
 
   GltfBuilder builder{model, split, {}, 0, 0, 0};
@@ -865,7 +881,67 @@ std::string percent_decoded(const std::string& uri, const std::string& pointer) 
   return out;
 }
 
-// A textureInfo (baseColorTexture, metallicRoughnessTexture): the image file its texture's source names.
+// A finite JSON number (nlohmann reads 1e999 as infinity), or an error naming the field.
+double finite_number(const nlohmann::json& v, const std::string& pointer) {
+  if (!v.is_number() || !std::isfinite(v.get<double>())) {
+    throw GltfFieldError{pointer, "expected a number, got " + describe_json(v)};
+  }
+  return v.get<double>();
+}
+
+std::string short_number(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+double number_in(const nlohmann::json& v, const std::string& pointer, double lo, double hi, const char* why = "") {
+  if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi)) {
+    throw GltfFieldError{pointer, "expected a number in [" + short_number(lo) + ", " + short_number(hi) + "]" + why +
+                                      ", got " + describe_json(v)};
+  }
+  return v.get<double>();
+}
+
+// An array of `n` numbers in [lo, hi] (a factor colour), into `out`.
+template <std::size_t N>
+void numbers_in(const nlohmann::json& v, const std::string& pointer, double lo, double hi, std::array<double, N>& out,
+                const char* why = "") {
+  if (!v.is_array() || v.size() != N) {
+    throw GltfFieldError{pointer, "expected " + std::to_string(N) + " numbers, got " + describe_json(v)};
+  }
+  for (std::size_t c = 0; c < N; ++c) out[c] = number_in(v[c], pointer + "/" + std::to_string(c), lo, hi, why);
+}
+
+// KHR_texture_transform of a textureInfo, or the identity.
+UvTransform texture_transform(const nlohmann::json& info, const std::string& pointer) {
+  const nlohmann::json* extensions = member(info, "extensions");
+  if (extensions == nullptr) return {};
+  const nlohmann::json* t = member(*extensions, "KHR_texture_transform");
+  if (t == nullptr) return {};
+  const std::string tp = pointer + "/extensions/KHR_texture_transform";
+  if (!t->is_object()) throw GltfFieldError{tp, "expected an object, got " + describe_json(*t)};
+  Vec2 offset{0.0, 0.0};
+  Vec2 scale{1.0, 1.0};
+  double rotation = 0.0;
+  auto pair = [&](const char* key, Vec2& out) {
+    if (const nlohmann::json* v = member(*t, key)) {
+      if (!v->is_array() || v->size() != 2) throw GltfFieldError{tp + "/" + key, "expected [u, v], got " + describe_json(*v)};
+      out = {finite_number((*v)[0], tp + "/" + key + "/0"), finite_number((*v)[1], tp + "/" + key + "/1")};
+    }
+  };
+  pair("offset", offset);
+  pair("scale", scale);
+  if (const nlohmann::json* v = member(*t, "rotation")) rotation = finite_number(*v, tp + "/rotation");
+  if (const nlohmann::json* tc = member(*t, "texCoord")) {
+    if (index_value(*tc, tp + "/texCoord") != 0) {
+      throw GltfFieldError{tp + "/texCoord", "only TEXCOORD_0 is supported, got " + describe_json(*tc)};
+    }
+  }
+  return make_gltf_uv_transform(offset, rotation, scale);
+}
+
+// A textureInfo (baseColorTexture, clearcoatTexture, ...): the image file its texture's source names.
 std::filesystem::path texture_image(const nlohmann::json& doc, const nlohmann::json& info, const std::string& pointer,
                                     const std::filesystem::path& root) {
   if (!info.is_object()) throw GltfFieldError{pointer, "expected a textureInfo object, got " + describe_json(info)};
@@ -903,7 +979,50 @@ std::filesystem::path texture_image(const nlohmann::json& doc, const nlohmann::j
   return file;
 }
 
-// Material `index` of the document (-1: the glTF default material, section 3.9.1).
+// Reads the material's textureInfo `key` of `object` (at `pointer`), if present, as textures of `m`: one per
+// (parameter, channel) it drives, sharing the image and transform.
+struct TextureUse {
+  const char* param;
+  int channel;
+  ParamTexture::Use use = ParamTexture::Use::multiply;
+};
+void read_texture(const nlohmann::json& doc, const nlohmann::json& object, const char* key, const std::string& pointer,
+                  const std::filesystem::path& root, bool colour, bool alpha, std::initializer_list<TextureUse> uses,
+                  GltfMaterial& m) {
+  const nlohmann::json* info = member(object, key);
+  if (info == nullptr) return;
+  const std::string tp = pointer + "/" + key;
+  const std::filesystem::path image = texture_image(doc, *info, tp, root);
+  const UvTransform transform = texture_transform(*info, tp);
+  for (const TextureUse& u : uses) {
+    GltfTexture t;
+    t.pointer = tp;
+    t.image = image;
+    t.colour = colour;
+    t.alpha = alpha;
+    t.param = u.param;
+    t.channel = u.channel;
+    t.use = u.use;
+    t.transform = transform;
+    m.textures.push_back(std::move(t));
+  }
+}
+
+// The material's extension `name` as an object, or nullptr when absent.
+const nlohmann::json* material_extension(const nlohmann::json& material, const char* name, const std::string& pointer) {
+  const nlohmann::json* extensions = member(material, "extensions");
+  if (extensions == nullptr) return nullptr;
+  if (!extensions->is_object()) throw GltfFieldError{pointer + "/extensions", "expected an object, got " + describe_json(*extensions)};
+  const nlohmann::json* e = member(*extensions, name);
+  if (e != nullptr && !e->is_object()) {
+    throw GltfFieldError{pointer + "/extensions/" + name, "expected an object, got " + describe_json(*e)};
+  }
+  return e;
+}
+
+// Material `index` of the document (-1: the glTF default material, section 3.9.1), as the `gltf` model's parameters
+// and textures: glTF 2.0 section 3.9 and each extension's README (the channels and colour spaces:
+// docs/scene-format.md, "glTF materials").
 GltfMaterial read_gltf_material(const nlohmann::json& doc, int index, const std::filesystem::path& root) {
   GltfMaterial m;
   if (index < 0) {
@@ -916,28 +1035,99 @@ GltfMaterial read_gltf_material(const nlohmann::json& doc, int index, const std:
     if (!name->is_string()) throw GltfFieldError{m.pointer + "/name", "expected a string, got " + describe_json(*name)};
     m.name = printable(name->get<std::string>());
   }
-  const nlohmann::json* pbr = member(material, "pbrMetallicRoughness");
-  if (pbr == nullptr) return m;
-  const std::string pp = m.pointer + "/pbrMetallicRoughness";
-  if (!pbr->is_object()) throw GltfFieldError{pp, "expected an object, got " + describe_json(*pbr)};
-  if (const nlohmann::json* f = member(*pbr, "baseColorFactor")) {
-    if (!f->is_array() || f->size() != 4) {
-      throw GltfFieldError{pp + "/baseColorFactor", "expected [r, g, b, a], got " + describe_json(*f)};
+  if (const nlohmann::json* f = member(material, "emissiveFactor")) numbers_in(*f, m.pointer + "/emissiveFactor", 0.0, 1.0, m.emissive);
+  if (const nlohmann::json* pbr = member(material, "pbrMetallicRoughness")) {
+    const std::string pp = m.pointer + "/pbrMetallicRoughness";
+    if (!pbr->is_object()) throw GltfFieldError{pp, "expected an object, got " + describe_json(*pbr)};
+    if (const nlohmann::json* f = member(*pbr, "baseColorFactor")) {
+      if (!f->is_array() || f->size() != 4) {
+        throw GltfFieldError{pp + "/baseColorFactor", "expected [r, g, b, a], got " + describe_json(*f)};
+      }
+      for (std::size_t c = 0; c < 4; ++c) {
+        const double v = unit_number((*f)[c], pp + "/baseColorFactor/" + std::to_string(c));
+        if (c < 3) m.base_color[c] = v;
+      }
     }
-    for (std::size_t c = 0; c < 4; ++c) {
-      const double v = unit_number((*f)[c], pp + "/baseColorFactor/" + std::to_string(c));
-      if (c < 3) m.base_color[c] = v;
+    if (const nlohmann::json* f = member(*pbr, "metallicFactor")) m.metallic = unit_number(*f, pp + "/metallicFactor");
+    if (const nlohmann::json* f = member(*pbr, "roughnessFactor")) m.roughness = unit_number(*f, pp + "/roughnessFactor");
+    read_texture(doc, *pbr, "baseColorTexture", pp, root, true, false, {{"base_color", -1}}, m);
+    read_texture(doc, *pbr, "metallicRoughnessTexture", pp, root, false, false, {{"roughness", 1}, {"metallic", 2}}, m);
+  }
+  const std::string ep = m.pointer + "/extensions/";
+  if (const nlohmann::json* e = material_extension(material, "KHR_materials_emissive_strength", m.pointer)) {
+    const std::string p = ep + "KHR_materials_emissive_strength";
+    if (const nlohmann::json* f = member(*e, "emissiveStrength")) {
+      m.emissive_strength = number_in(*f, p + "/emissiveStrength", 0.0, 1e6, " (the gltf model's range)");
     }
   }
-  if (const nlohmann::json* f = member(*pbr, "metallicFactor")) m.metallic = unit_number(*f, pp + "/metallicFactor");
-  if (const nlohmann::json* f = member(*pbr, "roughnessFactor")) m.roughness = unit_number(*f, pp + "/roughnessFactor");
-  if (const nlohmann::json* t = member(*pbr, "baseColorTexture")) {
-    m.base_color_image = texture_image(doc, *t, pp + "/baseColorTexture", root);
+  if (const nlohmann::json* e = material_extension(material, "KHR_materials_ior", m.pointer)) {
+    const std::string p = ep + "KHR_materials_ior";
+    if (const nlohmann::json* f = member(*e, "ior")) {
+      const double v = f->is_number() ? f->get<double>() : -1.0;
+      if (!f->is_number() || !(v == 0.0 || (v >= 1.0 && v <= 10.0))) {
+        throw GltfFieldError{p + "/ior", "expected 0 or a number in [1, 10] (the gltf model's largest is 10), got " +
+                                             describe_json(*f)};
+      }
+      m.ior = v;
+    }
   }
-  if (const nlohmann::json* t = member(*pbr, "metallicRoughnessTexture")) {
-    m.metallic_roughness_image = texture_image(doc, *t, pp + "/metallicRoughnessTexture", root);
+  if (const nlohmann::json* e = material_extension(material, "KHR_materials_specular", m.pointer)) {
+    const std::string p = ep + "KHR_materials_specular";
+    if (const nlohmann::json* f = member(*e, "specularFactor")) m.specular = unit_number(*f, p + "/specularFactor");
+    if (const nlohmann::json* f = member(*e, "specularColorFactor")) {
+      numbers_in(*f, p + "/specularColorFactor", 0.0, 10.0, m.specular_color, " (the gltf model's range)");
+    }
+    read_texture(doc, *e, "specularTexture", p, root, false, true, {{"specular", 0}}, m);
+    read_texture(doc, *e, "specularColorTexture", p, root, true, false, {{"specular_color", -1}}, m);
+  }
+  if (const nlohmann::json* e = material_extension(material, "KHR_materials_clearcoat", m.pointer)) {
+    const std::string p = ep + "KHR_materials_clearcoat";
+    if (const nlohmann::json* f = member(*e, "clearcoatFactor")) m.clearcoat = unit_number(*f, p + "/clearcoatFactor");
+    if (const nlohmann::json* f = member(*e, "clearcoatRoughnessFactor")) {
+      m.clearcoat_roughness = unit_number(*f, p + "/clearcoatRoughnessFactor");
+    }
+    read_texture(doc, *e, "clearcoatTexture", p, root, false, false, {{"clearcoat", 0}}, m);
+    read_texture(doc, *e, "clearcoatRoughnessTexture", p, root, false, false, {{"clearcoat_roughness", 1}}, m);
+  }
+  if (const nlohmann::json* e = material_extension(material, "KHR_materials_sheen", m.pointer)) {
+    const std::string p = ep + "KHR_materials_sheen";
+    if (const nlohmann::json* f = member(*e, "sheenColorFactor")) numbers_in(*f, p + "/sheenColorFactor", 0.0, 1.0, m.sheen_color);
+    if (const nlohmann::json* f = member(*e, "sheenRoughnessFactor")) m.sheen_roughness = unit_number(*f, p + "/sheenRoughnessFactor");
+    read_texture(doc, *e, "sheenColorTexture", p, root, true, false, {{"sheen_color", -1}}, m);
+    read_texture(doc, *e, "sheenRoughnessTexture", p, root, false, true, {{"sheen_roughness", 0}}, m);
+  }
+  if (const nlohmann::json* e = material_extension(material, "KHR_materials_anisotropy", m.pointer)) {
+    const std::string p = ep + "KHR_materials_anisotropy";
+    if (const nlohmann::json* f = member(*e, "anisotropyStrength")) m.anisotropy_strength = unit_number(*f, p + "/anisotropyStrength");
+    if (const nlohmann::json* f = member(*e, "anisotropyRotation")) {
+      // Any angle; reduced to [-pi, pi] (the model's range is [-100, 100], and a texture's direction adds up to pi).
+      m.anisotropy_rotation = std::remainder(finite_number(*f, p + "/anisotropyRotation"), 2.0 * pi);
+    }
+    read_texture(doc, *e, "anisotropyTexture", p, root, false, false,
+                 {{"anisotropy_strength", -1, ParamTexture::Use::anisotropy}}, m);
   }
   return m;
+}
+
+// extensionsUsed entries no reader here knows: a warning (one line), or "".
+std::string unread_extensions_warning(const nlohmann::json& doc) {
+  const nlohmann::json* used = member(doc, "extensionsUsed");
+  if (used == nullptr) return {};
+  if (!used->is_array()) throw GltfFieldError{"/extensionsUsed", "expected an array of names, got " + describe_json(*used)};
+  std::vector<std::string> unread;
+  for (std::size_t i = 0; i < used->size(); ++i) {
+    const nlohmann::json& name = (*used)[i];
+    if (!name.is_string()) throw GltfFieldError{"/extensionsUsed/" + std::to_string(i), "expected a name, got " + describe_json(name)};
+    const std::string text = name.get<std::string>();
+    const auto known = gltf_extensions_read();
+    if (std::find(known.begin(), known.end(), text) == known.end()) unread.push_back(printable(text, 80));
+  }
+  if (unread.empty()) return {};
+  std::string list;
+  for (const std::string& u : unread) list += (list.empty() ? "" : ", ") + u;
+  return "extensionsUsed: " + std::string(unread.size() == 1 ? "extension " : "extensions ") + list +
+         (unread.size() == 1 ? " is" : " are") + " not read; the file is rendered without " +
+         (unread.size() == 1 ? "it" : "them");
 }
 
 Result<GltfScene> read_gltf_scene(const std::filesystem::path& path) {
@@ -957,9 +1147,10 @@ Result<GltfScene> read_gltf_scene(const std::filesystem::path& path) {
     for (std::size_t i = 0; materials != nullptr && i < materials->size(); ++i) {
       all.push_back(read_gltf_material(doc, static_cast<int>(i), root));
     }
+    if (std::string w = unread_extensions_warning(doc); !w.empty()) scene.warnings.push_back(std::move(w));
     for (auto& [key, mesh] : read->parts) {
       GltfMaterial m = key >= 0 ? all[static_cast<std::size_t>(key)] : read_gltf_material(doc, -1, root);
-      if ((!m.base_color_image.empty() || !m.metallic_roughness_image.empty()) && mesh.uvs.empty()) {
+      if (!m.textures.empty() && mesh.uvs.empty()) {
         throw GltfFieldError{m.pointer, "has textures, but the primitives that use it have no TEXCOORD_0"};
       }
       mesh.material = static_cast<int>(scene.materials.size());
@@ -984,6 +1175,8 @@ Result<MeshShape> guarded(const std::filesystem::path& path, Result<MeshShape> (
 }
 
 }  // namespace
+
+std::span<const std::string_view> gltf_extensions_read() { return kExtensionsRead; }
 
 Result<MeshShape> load_obj(const std::filesystem::path& path) { return guarded(path, read_obj); }
 Result<MeshShape> load_gltf(const std::filesystem::path& path) { return guarded(path, read_gltf); }

@@ -26,16 +26,23 @@
 //   recursion. Running out of memory is an error, not an exception.
 // - MeshShape::source is the path as given; material is 0.
 // - load_gltf_scene: the same triangles, one MeshShape per glTF material its primitives use (MeshShape::material
-//   indexes GltfScene::materials), with each material's pbrMetallicRoughness read and checked: factors in
-//   [0, 1], baseColorFactor four numbers, textures through textures[].source to images[].uri files inside the
-//   glTF's folder tree, texCoord 0 only. Embedded images (bufferView, data: URIs) are refused. Every material of
-//   the file is checked, used or not; an error is one line: the file, the JSON pointer of the field, why.
-//   Not read (docs/scene-format.md, "glTF materials"): normal, occlusion and emissive textures, emissiveFactor,
-//   alphaMode, doubleSided, samplers (lookups are bilinear and repeat) and every extension.
+//   indexes GltfScene::materials), with each material's pbrMetallicRoughness, emissive factor and the extensions
+//   KHR_materials_ior, _specular, _clearcoat, _sheen, _anisotropy and _emissive_strength read and checked, their
+//   textures with KHR_texture_transform (docs/scene-format.md, "glTF materials"): factors in their ranges, textures
+//   through textures[].source to images[].uri files inside the glTF's folder tree, texCoord 0 only. Embedded images
+//   (bufferView, data: URIs) are refused. Every material of the file is checked, used or not; an error is one line:
+//   the file, the JSON pointer of the field, why.
+//   Extensions: every glTF reader here accepts a file whose extensionsRequired lists only the ones above and
+//   KHR_texture_transform (gltf_extensions_read), and refuses any other, naming it; an extension in extensionsUsed
+//   only that is not read is a warning in GltfScene::warnings (one line each).
+//   Not read: normal, occlusion and emissive textures, alphaMode, doubleSided, samplers (lookups are bilinear and
+//   repeat), clearcoatNormalTexture.
 #pragma once
 
 #include <array>
 #include <filesystem>
+#include <span>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -50,15 +57,42 @@ Result<MeshShape> load_mesh(const std::filesystem::path& path);
 Result<MeshShape> load_obj(const std::filesystem::path& path);
 Result<MeshShape> load_gltf(const std::filesystem::path& path);  // .gltf (JSON) or .glb (binary)
 
-// A glTF material's pbrMetallicRoughness (glTF 2.0, section 3.9.2); the defaults are the spec's.
+// The extensions the glTF readers know: a file may require them (extensionsRequired); any other required one is an
+// error naming it.
+std::span<const std::string_view> gltf_extensions_read();
+
+// A texture of a glTF material: the image file, how it is decoded, the `gltf` model parameter it multiplies and
+// with which channel (docs/scene-format.md, "glTF materials").
+struct GltfTexture {
+  std::string pointer;               // the textureInfo's JSON pointer, e.g. /materials/0/extensions/KHR_materials_sheen/sheenColorTexture
+  std::filesystem::path image;       // the image file (images[].uri, percent escapes decoded)
+  bool colour = false;               // sRGB colour (decoded to linear), or data (code / max)
+  bool alpha = false;                // data from the image's alpha channel (specularTexture, sheenRoughnessTexture)
+  std::string param;                 // the gltf parameter it multiplies (anisotropy: anisotropy_strength)
+  int channel = -1;                  // -1: r, g, b onto a colour; 0, 1, 2: that channel (alpha images: any)
+  ParamTexture::Use use = ParamTexture::Use::multiply;
+  UvTransform transform;             // KHR_texture_transform, or the identity
+};
+
+// A glTF material as the `gltf` model's parameters (docs/models/gltf.md); the defaults are the specifications'.
 struct GltfMaterial {
   std::string name;     // the material's "name", or ""
   std::string pointer;  // "/materials/N", or "(default material)" for primitives without one (section 3.9.1)
   std::array<double, 3> base_color{1.0, 1.0, 1.0};  // baseColorFactor's r, g, b (its alpha is not used)
   double metallic = 1.0;                           // metallicFactor
   double roughness = 1.0;                          // roughnessFactor (perceptual roughness)
-  std::filesystem::path base_color_image;          // baseColorTexture's image file (sRGB colour), or empty
-  std::filesystem::path metallic_roughness_image;  // metallicRoughnessTexture's image file (data: G, B), or empty
+  std::array<double, 3> emissive{0.0, 0.0, 0.0};   // emissiveFactor
+  double emissive_strength = 1.0;                  // KHR_materials_emissive_strength
+  double ior = 1.5;                                // KHR_materials_ior
+  double specular = 1.0;                           // KHR_materials_specular
+  std::array<double, 3> specular_color{1.0, 1.0, 1.0};
+  double clearcoat = 0.0;                          // KHR_materials_clearcoat
+  double clearcoat_roughness = 0.0;
+  std::array<double, 3> sheen_color{0.0, 0.0, 0.0};  // KHR_materials_sheen
+  double sheen_roughness = 0.0;
+  double anisotropy_strength = 0.0;                // KHR_materials_anisotropy
+  double anisotropy_rotation = 0.0;                // radians
+  std::vector<GltfTexture> textures;               // in the order the material names them
 };
 
 struct GltfScene {
@@ -66,6 +100,7 @@ struct GltfScene {
   // MeshShape::material indexes `materials`.
   std::vector<MeshShape> parts;
   std::vector<GltfMaterial> materials;   // one per part, in the order of the parts
+  std::vector<std::string> warnings;     // one line each, without the file's name
 };
 
 Result<GltfScene> load_gltf_scene(const std::filesystem::path& path);

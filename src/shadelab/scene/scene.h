@@ -48,6 +48,36 @@ struct Texture {
 // Bilinear lookup with wrap-around in both directions; uv = (0, 0) is the top-left texel corner.
 Rgb sample_texture(const Texture& texture, Vec2 uv);
 
+// An affine map of texture coordinates, uv' = (m00 u + m01 v + m02, m10 u + m11 v + m12): glTF's
+// KHR_texture_transform (make_gltf_uv_transform). The default is the identity.
+struct UvTransform {
+  double m00 = 1.0, m01 = 0.0, m02 = 0.0;
+  double m10 = 0.0, m11 = 1.0, m12 = 0.0;
+  Vec2 apply(Vec2 uv) const { return {m00 * uv.x + m01 * uv.y + m02, m10 * uv.x + m11 * uv.y + m12}; }
+};
+
+// KHR_texture_transform's matrix translation x rotation x scale (its README, "Overview"): uv' = offset +
+// R(rotation) (scale_u u, scale_v v) with R = [cos r, sin r; -sin r, cos r], which turns the uvs counter-clockwise
+// as glTF's image (v down) is seen: the README's example (offset [0, 1], rotation pi/2, scale [0.5, 0.5]) maps the
+// unit square onto the image's lower-left quadrant.
+UvTransform make_gltf_uv_transform(Vec2 offset, double rotation_rad, Vec2 scale);
+
+// A texture that drives a model parameter (the scene's material "textures" by parameter name, and every glTF
+// texture): the parameter's value becomes its factor (the material's own value) times the texel, clamped to the
+// parameter's range, as glTF's factors and textures combine.
+struct ParamTexture {
+  enum class Use {
+    multiply,    // channel -1: r, g, b x a colour parameter; channel 0, 1, 2: that channel x a scalar parameter
+    anisotropy,  // KHR_materials_anisotropy's texture: anisotropy_strength x blue, anisotropy_rotation +
+                 // atan2(2 green - 1, 2 red - 1) (the direction in the tangent frame); `param` is anisotropy_strength
+  };
+  std::string param;
+  int texture = -1;  // index into Scene::textures
+  int channel = -1;
+  Use use = Use::multiply;
+  UvTransform transform;  // applied to the material's (tiled) uv before the lookup
+};
+
 struct Material {
   std::string name;
   std::string model;                   // registry name, "" for a purely emissive material
@@ -62,12 +92,14 @@ struct Material {
   // they multiply the parameters, as glTF's factors and textures do.
   int base_color_texture = -1;          // colour (sRGB) x parameter base_color
   int metallic_roughness_texture = -1;  // data: green x perceptual_roughness, blue x metallic
+  // Textures that multiply model parameters (gltf, principled-v1, layered, ... and glTF files' materials).
+  std::vector<ParamTexture> param_textures;
   GlossEncoding gloss_encoding;
   Vec2 uv_scale{1.0, 1.0};  // texture lookups use (u * uv_scale.x, v * uv_scale.y): tiling
   Rgb emission;             // emitted radiance, W m^-2 sr^-1 (emissive shapes)
   bool textured() const {
     return kd_texture >= 0 || ks_texture >= 0 || gloss_texture >= 0 || base_color_texture >= 0 ||
-           metallic_roughness_texture >= 0;
+           metallic_roughness_texture >= 0 || !param_textures.empty();
   }
 };
 
@@ -144,6 +176,9 @@ struct Scene {
   std::vector<SceneLight> lights;
   Environment environment;
   RenderSettings settings;
+  // What the loader read past and says so, one line each (a glTF extension in extensionsUsed that shadelab does not
+  // read, ...): the CLI prints them on stderr as "warning: ...". They do not change the image.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace shadelab

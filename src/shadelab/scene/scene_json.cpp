@@ -440,22 +440,32 @@ class Parser {
       throw Failure{node.child_pointer("procedural"), "give 'file' or 'procedural', not both"};
     if (!has_file && !has_procedural) node.fail("a texture needs 'file' or 'procedural'");
     if (has_file) {
-      const Object o(node, {"file", "data"}, "a file texture");
+      const Object o(node, {"file", "data", "alpha"}, "a file texture");
       const std::filesystem::path path = file(o.require("file"));
+      const bool alpha = o.has("alpha") && boolean(*o.get("alpha"));
+      if (alpha && o.has("data") && !boolean(*o.get("data"))) {
+        throw Failure{o.node().child_pointer("data"), "an alpha texture is data (the alpha codes as stored)"};
+      }
       read_file_texture(t, path, o.has("data") && boolean(*o.get("data")),
-                        Node(o.node().value().at("file"), o.node().child_pointer("file")));
+                        Node(o.node().value().at("file"), o.node().child_pointer("file")), alpha);
       return t;
     }
     return procedural_texture(node, t);
   }
 
   // A texture from an image file; errors name `where` (a scene field).
-  void read_file_texture(Texture& t, const std::filesystem::path& path, bool data, const Node& where) {
+  // alpha: the PNG's alpha channel as data, in R, G and B (1 where the file has none).
+  void read_file_texture(Texture& t, const std::filesystem::path& path, bool data, const Node& where, bool alpha = false) {
     {
-      t.data = data;
-      t.source = path.string();
+      t.data = data || alpha;
+      t.source = path.string() + (alpha ? " (alpha)" : "");
       ReadInfo info;
-      auto image = read_budgeted(path, &info);
+      auto image = read_budgeted(path, &info, alpha);
+      if (image && alpha) {
+        charge_image(where, image->pixel_count() * 12);
+        t.image = std::move(image).value();
+        return;  // the alpha codes / max, as stored
+      }
       if (!image) where.fail(image.error().message);
       charge_image(where, image->pixel_count() * 12);
       t.image = std::move(image).value();
@@ -621,7 +631,20 @@ class Parser {
   }
 
   void parse_material_textures(const Node& node, const ModelInfo& info, Material& m) const {
-    const Object o(node, {"kd", "ks", "gloss", "normal", "base_color", "metallic_roughness"}, "material textures");
+    // The named slots, then any colour or scalar parameter of the model by its name (ParamTexture: factor x texel).
+    static const std::vector<std::string_view> slots = {"kd", "ks", "gloss", "normal", "base_color", "metallic_roughness"};
+    std::vector<std::string_view> keys = slots;
+    for (const ParamSpec& p : info.params) {
+      if ((p.kind == ParamKind::color || p.kind == ParamKind::scalar) &&
+          std::find(slots.begin(), slots.end(), p.name) == slots.end()) {
+        keys.push_back(p.name);
+      }
+    }
+    const Object o(node, keys, "material textures (brdf " + info.name + ")");
+    for (const ParamSpec& p : info.params) {
+      if (std::find(slots.begin(), slots.end(), p.name) != slots.end()) continue;
+      if (auto n = o.get(p.name)) m.param_textures.push_back(param_texture(*n, p));
+    }
     auto slot = [&](std::string_view key, bool data, const char* what) -> int {
       const Node n = *o.get(key);
       const int index = texture_ref(n);
@@ -669,6 +692,34 @@ class Parser {
       }
       m.metallic_roughness_texture = slot("metallic_roughness", true, "a metallic-roughness map");
     }
+  }
+
+  // A texture for parameter `spec`: a texture's name, or {"texture": name, "channel": "r" | "g" | "b"} (a scalar
+  // parameter reads one channel, red by default, of a data texture; a colour parameter r, g and b of any texture).
+  ParamTexture param_texture(const Node& n, const ParamSpec& spec) const {
+    ParamTexture p;
+    p.param = spec.name;
+    const bool colour = spec.kind == ParamKind::color;
+    p.channel = colour ? -1 : 0;
+    Node texture_node = n;
+    if (n.value().is_object()) {
+      const Object o(n, {"texture", "channel"}, "a parameter texture");
+      texture_node = o.require("texture");
+      if (auto c = o.get("channel")) {
+        if (colour) c->fail("parameter '" + spec.name + "' is a colour: it takes the texture's r, g and b; remove 'channel'");
+        const std::string w = word(*c, {"r", "g", "b"});
+        p.channel = w == "r" ? 0 : w == "g" ? 1 : 2;
+      }
+    } else if (!n.value().is_string()) {
+      n.fail("expected a texture name or {\"texture\": name, \"channel\": \"r\"}, got " + describe(n.value()));
+    }
+    p.texture = texture_ref(texture_node);
+    const Texture& t = m_scene.textures[static_cast<std::size_t>(p.texture)];
+    if (!colour && !t.data) {
+      texture_node.fail("texture '" + t.name + "' is a colour texture; parameter '" + spec.name +
+                        "' (a number) needs a data texture (\"data\": true)");
+    }
+    return p;
   }
 
   int material_ref(const Node& n) const {
@@ -747,43 +798,61 @@ class Parser {
     }
   }
 
-  // A glTF file's meshes with its pbrMetallicRoughness materials, mapped to `filament` (docs/scene-format.md,
-  // "glTF materials"); read once per file, its materials and textures added to the scene once.
+  // A glTF file's meshes with its materials as `gltf` materials (docs/scene-format.md, "glTF materials"); read
+  // once per file, its materials and textures added to the scene once.
   const std::vector<MeshShape>& gltf_import(const Node& file_node, const std::filesystem::path& path) {
     if (auto it = m_gltf.find(path.string()); it != m_gltf.end()) return it->second;
     auto loaded = load_gltf_scene(path);
     if (!loaded) file_node.fail(loaded.error().message);
+    for (const std::string& w : loaded->warnings) {
+      m_scene.warnings.push_back(m_scene.source + ": " + file_node.pointer() + ": " + printable(path.string()) + ": " + w);
+    }
     std::vector<MeshShape> parts = std::move(loaded->parts);
     for (MeshShape& part : parts) {
       const GltfMaterial& g = loaded->materials[static_cast<std::size_t>(part.material)];
       Material m;
       m.name = path.string() + "#" + g.pointer + (g.name.empty() ? "" : " (" + g.name + ")");
-      m.model = "filament";
-      // glTF's dielectric F0 = 0.04 is Filament's reflectance 0.5 (0.16 x 0.5^2); perceptual_roughness starts at
-      // 0.01 (filament.cpp), so a roughnessFactor below 0.01 becomes 0.01.
-      m.params = {{"base_color", exact_number(g.base_color[0]) + "," + exact_number(g.base_color[1]) + "," +
-                                     exact_number(g.base_color[2])},
+      m.model = "gltf";
+      auto rgb = [](const std::array<double, 3>& c) {
+        return exact_number(c[0]) + "," + exact_number(c[1]) + "," + exact_number(c[2]);
+      };
+      m.params = {{"base_color", rgb(g.base_color)},
                   {"metallic", exact_number(g.metallic)},
-                  {"perceptual_roughness", exact_number(std::max(g.roughness, 0.01))},
-                  {"reflectance", "0.5"},
-                  {"diffuse", "lambert"},
-                  {"energy_compensation", "on"}};
+                  {"roughness", exact_number(g.roughness)},
+                  {"ior", exact_number(g.ior)},
+                  {"specular", exact_number(g.specular)},
+                  {"specular_color", rgb(g.specular_color)},
+                  {"anisotropy_strength", exact_number(g.anisotropy_strength)},
+                  {"anisotropy_rotation", exact_number(g.anisotropy_rotation)},
+                  {"sheen_color", rgb(g.sheen_color)},
+                  {"sheen_roughness", exact_number(g.sheen_roughness)},
+                  {"clearcoat", exact_number(g.clearcoat)},
+                  {"clearcoat_roughness", exact_number(g.clearcoat_roughness)},
+                  {"emissive", rgb(g.emissive)},
+                  {"emissive_strength", exact_number(g.emissive_strength)}};
       auto brdf = make_brdf(m.model, m.params);
       if (!brdf) file_node.fail(path.string() + ": " + g.pointer + ": " + brdf.error().message);
       m.brdf = std::shared_ptr<const Brdf>(std::move(brdf).value());
-      auto texture = [&](const std::filesystem::path& image, bool data) {
-        const std::string name = image.string() + (data ? " (data)" : " (colour)");
-        if (auto it = m_gltf_textures.find(name); it != m_gltf_textures.end()) return it->second;
-        Texture t;
-        t.name = name;
-        read_file_texture(t, image, data, file_node);
-        const int index = static_cast<int>(m_scene.textures.size());
-        m_scene.textures.push_back(std::move(t));
-        m_gltf_textures.emplace(name, index);
-        return index;
-      };
-      if (!g.base_color_image.empty()) m.base_color_texture = texture(g.base_color_image, false);
-      if (!g.metallic_roughness_image.empty()) m.metallic_roughness_texture = texture(g.metallic_roughness_image, true);
+      // emissiveFactor x emissiveStrength: radiance in the scene's radiance unit, as a material's "emission".
+      const Rgb emissive{g.emissive[0] * g.emissive_strength, g.emissive[1] * g.emissive_strength,
+                         g.emissive[2] * g.emissive_strength};
+      m.emission = bounded_light(file_node, radiometric(emissive, m_units, LightQuantity::radiance));
+      for (const GltfTexture& gt : g.textures) {
+        const char* kind = gt.alpha ? " (alpha)" : gt.colour ? " (colour)" : " (data)";
+        const std::string name = gt.image.string() + kind;
+        int index = -1;
+        if (auto it = m_gltf_textures.find(name); it != m_gltf_textures.end()) {
+          index = it->second;
+        } else {
+          Texture t;
+          t.name = name;
+          read_file_texture(t, gt.image, !gt.colour, file_node, gt.alpha);
+          index = static_cast<int>(m_scene.textures.size());
+          m_scene.textures.push_back(std::move(t));
+          m_gltf_textures.emplace(name, index);
+        }
+        m.param_textures.push_back({gt.param, index, gt.channel, gt.use, gt.transform});
+      }
       part.material = static_cast<int>(m_scene.materials.size());
       m_scene.materials.push_back(std::move(m));
     }
@@ -1042,8 +1111,8 @@ class Parser {
     m_image_bytes += bytes;
   }
   // read_image within what is left of the budget; a read refused for memory says so.
-  Result<Image> read_budgeted(const std::filesystem::path& path, ReadInfo* info) {
-    auto image = read_image(path, info, image_budget_left());
+  Result<Image> read_budgeted(const std::filesystem::path& path, ReadInfo* info, bool alpha = false) {
+    auto image = read_image(path, info, image_budget_left(), alpha ? PngSamples::alpha : PngSamples::srgb);
     if (!image && image_budget_left() < image_read_budget_bytes &&
         image.error().message.find("memory budget") != std::string::npos) {
       return make_error(image.error().message + " (" + image_budget_note() + ")");

@@ -40,4 +40,17 @@ Rgb sample_texture(const Texture& texture, Vec2 uv) {
   return top * (1.0 - fy) + bottom * fy;
 }
 
+UvTransform make_gltf_uv_transform(Vec2 offset, double rotation_rad, Vec2 scale) {
+  const double c = std::cos(rotation_rad);
+  const double s = std::sin(rotation_rad);
+  UvTransform t;
+  t.m00 = c * scale.x;
+  t.m01 = s * scale.y;
+  t.m02 = offset.x;
+  t.m10 = -s * scale.x;
+  t.m11 = c * scale.y;
+  t.m12 = offset.y;
+  return t;
+}
+
 }  // namespace shadelab
