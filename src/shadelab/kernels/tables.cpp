@@ -148,55 +148,23 @@ GgxEnergyTable compute_table(int g) {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The n-point Gauss-Legendre rule on [-1, 1]: nodes are the roots of P_n, found by Newton's method from
-// cos(pi (k + 3/4) / (n + 1/2)) (Abramowitz & Stegun 22.16.6's asymptotic), weights 2 / ((1 - x^2) P_n'(x)^2)
-// (A&S 25.4.29), P_n by Bonnet's recurrence (k + 1) P_{k+1} = (2k + 1) x P_k - k P_{k-1}.
-struct GaussLegendre {
-  std::vector<double> x;
-  std::vector<double> w;
-};
-
-GaussLegendre gauss_legendre(int n) {
-  GaussLegendre g;
-  for (int k = 0; k < n; ++k) {
-    double x = std::cos(kPi * (k + 0.75) / (n + 0.5));
-    double dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0;
-      double p1 = x;
-      for (int m = 2; m <= n; ++m) {
-        const double p2 = ((2.0 * m - 1.0) * x * p1 - (m - 1.0) * p0) / m;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1.0);  // P_n'(x) = n (x P_n - P_{n-1}) / (x^2 - 1)
-      const double dx = p1 / dp;
-      x -= dx;
-      if (std::abs(dx) < 1e-16) break;
-    }
-    g.x.push_back(x);
-    g.w.push_back(2.0 / ((1.0 - x * x) * dp * dp));
-  }
-  return g;
-}
-
 // The azimuthal integral of D_charlie at fixed theta_i, theta_o: integral_0^{2 pi} D(h) d(phi_i), with cos(theta_h) =
 // (cos theta_i + cos theta_o) / |wi + wo| and |wi + wo|^2 = 2 (1 + cos theta_i cos theta_o + sin theta_i sin theta_o
 // cos phi). D is even in phi, so twice the integral over [0, pi], by 48-point Gauss-Legendre (its nodes crowd the
-// ends, where the lobe peaks at low roughness: phi = 0, wi and wo on the same side).
+// ends, where the lobe peaks at low roughness: phi = 0, wi and wo on the same side; numeric/quadrature.h's rule).
 double azimuthal_charlie_integral(double theta_i, double theta_o, double alpha) {
-  static const GaussLegendre g = gauss_legendre(48);
+  const GaussLegendreRule& g = gauss_legendre_rule(48);
   const double ci = std::cos(theta_i);
   const double si = std::sin(theta_i);
   const double co = std::cos(theta_o);
   const double so = std::sin(theta_o);
   const double p = ci + co;
   double sum = 0.0;
-  for (std::size_t k = 0; k < g.x.size(); ++k) {
-    const double phi = 0.5 * kPi * (g.x[k] + 1.0);
+  for (std::size_t k = 0; k < g.nodes.size(); ++k) {
+    const double phi = 0.5 * kPi * (g.nodes[k] + 1.0);
     const double n2 = 2.0 * (1.0 + ci * co + si * so * std::cos(phi));
     if (!(n2 > 0.0)) continue;  // wi antipodal to wo: measure zero
-    sum += g.w[k] * D_charlie(p / std::sqrt(n2), alpha);
+    sum += g.weights[k] * D_charlie(p / std::sqrt(n2), alpha);
   }
   return 2.0 * 0.5 * kPi * sum;
 }
