@@ -54,6 +54,14 @@ before(async () => {
            '--allow-file-access-from-files'],
   });
   page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+  // The test's own helper in every page: bytes to base64 (see shownPixels below).
+  await page.addInitScript(() => {
+    window.shadelabBase64 = (bytes) => {
+      let s = '';
+      for (let i = 0; i < bytes.length; i += 0x8000) s += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+      return btoa(s);
+    };
+  });
   page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
   page.on('pageerror', (e) => consoleErrors.push(String(e)));
 });
@@ -267,7 +275,7 @@ async function renderReference(s, name) {
 
 async function pngPixels(file) {
   const data = fs.readFileSync(file).toString('base64');
-  return page.evaluate(async (b64) => {
+  const b64 = page.evaluate(async (b64) => {
     const img = new Image();
     img.src = 'data:image/png;base64,' + b64;
     await img.decode();
@@ -275,8 +283,19 @@ async function pngPixels(file) {
     c.width = img.width; c.height = img.height;
     const ctx = c.getContext('2d');
     ctx.drawImage(img, 0, 0);
-    return Array.from(ctx.getImageData(0, 0, img.width, img.height).data);
+    return window.shadelabBase64(ctx.getImageData(0, 0, img.width, img.height).data);
   }, data);
+  return Buffer.from(await b64, 'base64');
+}
+
+// Large pixel arrays cross from the page as base64 text: Playwright serializes a JavaScript array element by
+// element, which took 2-4 s per 384 x 384 image (4 of the 12 s of a view).
+async function shownPixels() {
+  const r = await page.evaluate(() => {
+    const p = window.shadelabSpherePixels();
+    return { width: p.width, height: p.height, b64: window.shadelabBase64(Uint8Array.from(p.rgba)) };
+  });
+  return { width: r.width, height: r.height, rgba: Buffer.from(r.b64, 'base64') };
 }
 
 test('the WebGL 2 sphere matches the C++ game renderer within 1/255 mean absolute difference', async () => {
@@ -289,7 +308,7 @@ test('the WebGL 2 sphere matches the C++ game renderer within 1/255 mean absolut
   for (const [i, q] of views.entries()) {
     const s = await open(q);
     assert.deepEqual(s.errors, [], q);
-    const shown = await page.evaluate(() => window.shadelabSpherePixels());
+    const shown = await shownPixels();
     const ref = await renderReference(s, `sphere${i}`);
     assert.equal(ref.length, shown.rgba.length);
     let sum = 0, lit = 0, max = 0;
@@ -332,7 +351,7 @@ test('the HDRI-lit sphere matches the C++ game renderer within 1/255 mean absolu
     assert.deepEqual(s.errors, [], q);
     assert.equal(s.sphere.env, new URLSearchParams(q).get('env'));
     assert.ok(s.sphere.env_file.endsWith(`${s.sphere.env}.exr`), s.sphere.env_file);
-    const shown = await page.evaluate(() => window.shadelabSpherePixels());
+    const shown = await shownPixels();
     const ref = await renderReference(s, `hdri${i}`);
     assert.equal(ref.length, shown.rgba.length);
     const inside = spherePixels(s.sphere);
@@ -366,7 +385,7 @@ test('without blender-data the page says so and keeps the point light', async ()
   assert.equal(s.sphere.lighting, 'point');
   assert.ok((await page.locator('#shadelab-error').textContent()).includes("'lighting'"));
   assert.match(await page.locator('#shadelab-env-status').textContent(), /no HDRI/);
-  const shown = await page.evaluate(() => window.shadelabSpherePixels());
+  const shown = await shownPixels();
   assert.ok(shown.rgba.some((v, k) => k % 4 !== 3 && v > 0), 'the point-lit sphere is drawn');
 });
 
