@@ -2,8 +2,11 @@
 // layered materials read) and `audit-lut` (a shipped table against the exact integral), with their errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <vector>
 
 #include "cli_run.h"
 #include "shadelab/envmap/specular/dfg.h"
@@ -109,8 +112,42 @@ TEST(CliLayered, AuditLutFindsQuantizationClippingAndPerturbations) {
   EXPECT_EQ(found["quantities"][1]["at"]["y"], 5);
   // Bad input: one line, exit 2.
   EXPECT_EQ(run("audit-lut " + (temp_dir() / "missing.png").string() + " --kind dfg").code, 2);
+  EXPECT_EQ(run("audit-lut " + (temp_dir() / "missing.ktx2").string() + " --kind dfg").code, 2);
   EXPECT_EQ(run("audit-lut " + dfg.string() + " --kind brdf").code, 2);
   EXPECT_EQ(run("bake lut fuzz --out " + (temp_dir() / "x.exr").string()).code, 2);
+}
+
+// The KTX 2 table `bake lut` writes (RGBA16F) audits to half precision: its error is the half rounding (at most half
+// an ulp, 2^-11 relative, of values up to 1), not zero; a truncated file is one line and exit 2.
+TEST(CliLayered, AuditLutReadsTheKtx2TableItWrites) {
+  const fs::path ktx = temp_dir() / "audit_dfg.ktx2";
+  ASSERT_EQ(run("bake lut dfg --size 16 --out " + ktx.string()).code, 0);
+  const auto a = json_of(run("audit-lut " + ktx.string() + " --kind dfg --json"));
+  EXPECT_EQ(a["format"], "ktx2");
+  EXPECT_EQ(a["sample_type"], "half");
+  EXPECT_EQ(a["width"], 16);
+  for (int c = 0; c < 2; ++c) {
+    const double e = a["quantities"][c]["max_error"].get<double>();
+    EXPECT_GT(e, 1e-6) << c;  // halves, not the float table
+    EXPECT_LE(e, std::ldexp(1.0, -11) * 1.0000001) << c;
+  }
+  std::vector<char> bytes;
+  {
+    std::ifstream f(ktx, std::ios::binary | std::ios::ate);
+    bytes.resize(static_cast<std::size_t>(f.tellg()));
+    f.seekg(0);
+    f.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  ASSERT_GT(bytes.size(), 200u);
+  const fs::path cut = temp_dir() / "audit_dfg_cut.ktx2";
+  {
+    std::ofstream f(cut, std::ios::binary);
+    f.write(bytes.data(), static_cast<std::streamsize>(bytes.size() - 100));
+  }
+  const auto r = run("audit-lut " + cut.string() + " --kind dfg");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("audit_dfg_cut.ktx2"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
 }  // namespace

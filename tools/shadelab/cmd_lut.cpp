@@ -24,6 +24,7 @@
 
 #include "cli_common.h"
 #include "shadelab/envmap/base/ktx2.h"
+#include "shadelab/envmap/base/ktx2_reader.h"
 #include "shadelab/envmap/specular/dfg.h"
 #include "shadelab/image/image.h"
 #include "shadelab/image/image_io.h"
@@ -160,15 +161,50 @@ struct AuditOptions {
   bool json = false;
 };
 
+// A 2D KTX 2 table (level 0; RGBA16F as `bake lut` writes it, or any float format the reader takes) as an image of
+// its first three channels. A cube map, a texture over 1024 x 1024 texels or a NaN / Inf texel is an error naming the
+// file.
+Image read_ktx2_table(const fs::path& in, ReadInfo& info) {
+  const Ktx2Texture k = unwrap(read_ktx2(in));
+  if (k.faces != 1) {
+    throw UsageError(fmt::format("'{}': a cube map ({} faces); audit-lut reads a 2D table", in.string(), k.faces));
+  }
+  if (k.width > 1024 || k.height > 1024) {
+    throw UsageError(fmt::format("'{}': {} x {} texels; audit-lut reads tables up to 1024 x 1024", in.string(), k.width,
+                                 k.height));
+  }
+  Image img(k.width, k.height);
+  for (int y = 0; y < k.height; ++y) {
+    for (int x = 0; x < k.width; ++x) {
+      const float* t = k.texel(0, 0, x, y);
+      for (int c = 0; c < 3; ++c) {
+        if (!std::isfinite(t[c])) {
+          throw UsageError(fmt::format("'{}': texel ({}, {}) channel {} of level 0 is not finite", in.string(), x, y, "RGB"[c]));
+        }
+      }
+      img.set(x, y, Rgb{t[0], t[1], t[2]});
+    }
+  }
+  info.format = "ktx2";
+  switch (k.vk_format) {
+    case 97: info.sample_type = "half"; break;    // VK_FORMAT_R16G16B16A16_SFLOAT
+    case 83: info.sample_type = "half"; break;    // VK_FORMAT_R16G16_SFLOAT
+    case 109: info.sample_type = "float"; break;  // VK_FORMAT_R32G32B32A32_SFLOAT
+    default: info.sample_type = "vkFormat " + std::to_string(k.vk_format); break;
+  }
+  return img;
+}
+
 void run_audit(const AuditOptions& o) {
   check_kind(o.kind);
   if (o.channel != "R" && o.channel != "G" && o.channel != "B") {
     throw UsageError("--channel: '" + o.channel + "' is not one of R | G | B");
   }
   const fs::path in(o.file);
-  require_extension("FILE", in, {".exr", ".png"}, "the lookup table");
+  require_extension("FILE", in, {".exr", ".ktx2", ".png"}, "the lookup table");
   ReadInfo info;
-  const Image lut = unwrap(read_image(in, &info, image_read_budget_bytes, PngSamples::linear));
+  const Image lut = lower_ext(in) == ".ktx2" ? read_ktx2_table(in, info)
+                                             : unwrap(read_image(in, &info, image_read_budget_bytes, PngSamples::linear));
   if (lut.width > 1024 || lut.height > 1024) {
     throw UsageError(fmt::format("'{}': {} x {} texels; audit-lut reads tables up to 1024 x 1024", in.string(), lut.width,
                                  lut.height));
@@ -255,7 +291,7 @@ void add_lut_commands(CLI::App& app, Command& command) {
 
   auto a = std::make_shared<AuditOptions>();
   auto* audit = app.add_subcommand("audit-lut", "hold a lookup table an engine ships against the exact integral");
-  audit->add_option("file", a->file, "the table: .png (8- or 16-bit, read as linear codes) or .exr")->required();
+  audit->add_option("file", a->file, "the table: .png (8- or 16-bit, read as linear codes), .exr or .ktx2 (2D, float)")->required();
   audit->add_option("--kind", a->kind, "dfg | sheen | coat")->required();
   audit->add_flag("--flip-y", a->flip_y, "row 0 of the file is the largest roughness (OpenGL's bottom-up rows)");
   audit->add_option("--channel", a->channel, "sheen / coat: the channel holding E (sheen: R charlie, G ashikhmin)")
