@@ -85,6 +85,17 @@ if(TARGET shadelab_cli)
   install(TARGETS shadelab_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT cli)
 endif()
 
+# Everything `cmake --install` copies, and nothing else (no tests, benchmarks or WebAssembly): the target
+# scripts/run.sh builds, so that the README's install step works after its main command (issue 39: the CLI
+# alone left the Python module and libshadelab_envmap.a unbuilt, and the install failed on them).
+set(shadelab_installable_targets ${SHADELAB_LIBRARY_TARGETS})
+foreach(t shadelab_cli shadelab_python)
+  if(TARGET ${t})
+    list(APPEND shadelab_installable_targets ${t})
+  endif()
+endforeach()
+add_custom_target(shadelab_installable DEPENDS ${shadelab_installable_targets})
+
 # The test: install into a temporary prefix, build an outside project against it with find_package and
 # with pkg-config, run both, and import the installed Python module (cmake/package_test.cmake).
 if(SHADELAB_BUILD_TESTS)

@@ -54,7 +54,11 @@ TEST(CliShBands, BandsThreeIsTodaysOutputExactly) {
   for (const auto& [key, value] : j.items()) keys.insert(key);
   EXPECT_EQ(keys, (std::set<std::string>{"order", "basis", "units", "convention", "band_factors", "window", "lights",
                                          "light_normalization", "radiance_coefficients", "irradiance_coefficients"}));
-  EXPECT_EQ(run("bake sh " + in + " --bands 3").out.rfind("SH9 irradiance coefficients (game units: E/pi):", 0), 0u);
+  const std::string text = run("bake sh " + in + " --bands 3").out;
+  EXPECT_EQ(text.rfind("SH9 irradiance coefficients (game units: E/pi):", 0), 0u);
+  // The text names its basis order and normalization (issue 39).
+  EXPECT_NE(text.find("basis: real SH, Condon-Shortley phase, z polar axis, Sloan 2008 order: Y00, Y1-1, Y10"), std::string::npos) << text;
+  EXPECT_NE(text.find("normalization: irradiance_coefficients give E/pi"), std::string::npos) << text;
   const shadelab::Sh9 sh = shadelab::project_sh9(shadelab::read_image(in).value());
   for (std::size_t i = 0; i < 9; ++i) EXPECT_EQ(j["radiance_coefficients"][i][1].get<double>(), sh.c[i].g) << i;
 }

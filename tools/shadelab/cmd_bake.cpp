@@ -676,6 +676,8 @@ void run_sh(const BakeOptions& o) {
   } else {
     fmt::print("SH9 irradiance coefficients ({} units: {}):\n", o.units,
                units == RadianceUnits::game ? "E/pi" : "E, W/m^2");
+    // The basis order and normalization, in the JSON's own words (issue 39: the text did not say them).
+    fmt::print("  basis: {}\n  normalization: {}\n", j["basis"].get<std::string>(), j["convention"].get<std::string>());
     const char* names[9] = {"L00", "L1-1", "L10", "L11", "L2-2", "L2-1", "L20", "L21", "L22"};
     for (std::size_t i = 0; i < 9; ++i) {
       const auto& c = j["irradiance_coefficients"][i];
