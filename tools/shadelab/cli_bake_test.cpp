@@ -68,7 +68,11 @@ TEST(CliBake, ShSaysItsConvention) {
 TEST(CliBake, SpecularWritesKtxAndExrFaces) {
   const fs::path in = constant_hdr();
   const fs::path out = temp_dir() / "spec.ktx";
-  const auto j = json_of(run("bake specular " + in.string() + " --size 8 --out " + out.string() + " --json"));
+  // By default the one requested file (issue 39); --exr-faces adds each level's six faces.
+  const auto plain = json_of(run("bake specular " + in.string() + " --size 8 --out " + out.string() + " --json"));
+  EXPECT_EQ(plain["exr_faces"].size(), 0u);
+  EXPECT_FALSE(fs::exists(temp_dir() / "spec_m0_px.exr"));
+  const auto j = json_of(run("bake specular " + in.string() + " --size 8 --exr-faces --out " + out.string() + " --json"));
   EXPECT_EQ(j["exponents"].size(), 4u);
   EXPECT_EQ(j["exr_faces"].size(), 24u);
   std::ifstream f(out, std::ios::binary);

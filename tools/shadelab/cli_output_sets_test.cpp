@@ -58,11 +58,11 @@ void expect_one_line_error(const shadelab::testing::CliRun& r, const std::string
 TEST(CliOutputSets, SmallerSpecularChainLeavesNoDeeperLevelsOfTheOlderOne) {
   const fs::path dir = fresh_dir("chain");
   const fs::path out = dir / "s.ktx2";
-  ASSERT_EQ(run("bake specular " + constant_hdr().string() + " --size 16 --out " + out.string()).code, 0);
+  ASSERT_EQ(run("bake specular " + constant_hdr().string() + " --size 16 --exr-faces --out " + out.string()).code, 0);
   EXPECT_TRUE(fs::exists(dir / "s_m4_pz.exr"));
   std::ofstream(dir / "s_notes.txt") << "not a face";  // not of the chain's naming: stays
   std::ofstream(dir / "t_m0_px.exr") << "another chain's face";
-  const auto r = run("bake specular " + constant_hdr().string() + " --size 4 --out " + out.string());
+  const auto r = run("bake specular " + constant_hdr().string() + " --size 4 --exr-faces --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
   std::vector<std::string> want = {"s.ktx2", "s_notes.txt", "t_m0_px.exr"};
   for (int m = 0; m < 3; ++m) {
@@ -70,8 +70,11 @@ TEST(CliOutputSets, SmallerSpecularChainLeavesNoDeeperLevelsOfTheOlderOne) {
   }
   std::sort(want.begin(), want.end());
   EXPECT_EQ(listing(dir), want);
-  // --no-exr-faces: the container alone is the output; the older faces go.
+  // --no-exr-faces: the container alone is the output; the older faces go. The default is the same.
   ASSERT_EQ(run("bake specular " + constant_hdr().string() + " --size 4 --no-exr-faces --out " + out.string()).code, 0);
+  EXPECT_EQ(listing(dir), (std::vector<std::string>{"s.ktx2", "s_notes.txt", "t_m0_px.exr"}));
+  ASSERT_EQ(run("bake specular " + constant_hdr().string() + " --size 4 --exr-faces --out " + out.string()).code, 0);
+  ASSERT_EQ(run("bake specular " + constant_hdr().string() + " --size 4 --out " + out.string()).code, 0);
   EXPECT_EQ(listing(dir), (std::vector<std::string>{"s.ktx2", "s_notes.txt", "t_m0_px.exr"}));
 }
 
@@ -81,12 +84,12 @@ TEST(CliOutputSets, SmallerSpecularChainLeavesNoDeeperLevelsOfTheOlderOne) {
 TEST(CliOutputSets, SpecularChainThatCannotBeWrittenChangesNothing) {
   const fs::path dir = fresh_dir("chain_fail");
   const fs::path out = dir / "s.ktx2";
-  ASSERT_EQ(run("bake specular " + constant_hdr().string() + " --size 4 --lobe ggx --out " + out.string()).code, 0);
+  ASSERT_EQ(run("bake specular " + constant_hdr().string() + " --size 4 --lobe ggx --exr-faces --out " + out.string()).code, 0);
   const std::string old_container = bytes(out), old_face = bytes(dir / "s_m0_px.exr");
   fs::remove(dir / "s_m1_px.exr");
   fs::create_directories(dir / "s_m1_px.exr");  // in the way of a level-1 face
   const auto before = listing(dir);
-  const auto r = run("bake specular " + constant_hdr().string() + " --size 4 --out " + out.string());
+  const auto r = run("bake specular " + constant_hdr().string() + " --size 4 --exr-faces --out " + out.string());
   expect_one_line_error(r, "s_m1_px.exr");
   EXPECT_EQ(bytes(out), old_container);
   EXPECT_EQ(bytes(dir / "s_m0_px.exr"), old_face);

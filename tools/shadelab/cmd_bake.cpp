@@ -75,7 +75,7 @@ struct BakeOptions {
   std::string format = "rgba16f";  // texel format of .ktx2 / .ktx / .dds outputs
   double gloss_scale = 10.0;
   double gloss_bias = 1.0;
-  bool exr_faces = true;
+  bool exr_faces = false;  // bake specular: --exr-faces (issue 39: the one requested file by default)
   bool json = false;
   bool progress = false;
   std::vector<std::string> lights;         // sh: DIR[:COLOUR], game colour
@@ -896,7 +896,9 @@ void add_bake_command(CLI::App& app, Command& command) {
       sub->add_option("--levels", o->levels, "number of mip levels, at most log2(size) + 1 (the same as --mips)");
       sub->add_option("--gloss-scale", o->gloss_scale, "exponent of level i: 2^(scale (1 - i/(M-1)) + bias)")->capture_default_str();
       sub->add_option("--gloss-bias", o->gloss_bias, "see --gloss-scale")->capture_default_str();
-      sub->add_flag("!--no-exr-faces", o->exr_faces, "do not write the per-level EXR faces");
+      sub->add_flag("--exr-faces,!--no-exr-faces", o->exr_faces,
+                    "also write each level's six faces as EXR files beside the container (STEM_mLEVEL_FACE.exr); "
+                    "--no-exr-faces, the default, writes the container alone");
       sub->add_option("--lobe", o->lobe, "phong (normalized Phong lobes, cmft's) or ggx (the split sum's GGX lobes)")
           ->capture_default_str();
       sub->add_option("--mapping", o->mapping,
