@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "shadelab/brdf/test_util.h"
@@ -177,6 +178,25 @@ TEST(Layered, FiniteAndNonNegativeEverywhere) {
       ASSERT_TRUE(is_finite(s.weight) && s.weight.g >= 0.0 && std::isfinite(s.pdf)) << i;
     }
   }
+}
+
+// The white furnace of the ground truth: a clear coat (coat_color 1) over a white Lambertian base reflects all
+// the light (nothing absorbs), within 3 standard errors, once the coat scatters multiply on its microsurface
+// (the default); with coat_scattering = single it loses energy at rough coats (0.93, 0.65, 0.32 at 0 degrees).
+TEST(Layered, ClearCoatOverWhiteLambertIsAWhiteFurnace) {
+  for (const char* r : {"0.3", "0.6", "1"}) {
+    const BrdfPtr f = testing::make("layered", {{"coat_roughness", r}, {"base_color", "1"}, {"walk_samples", "1"}});
+    for (double theta : {0.0, 60.0}) {
+      const Mean a = albedo_by_sampling(*f, testing::dir(theta, 20.0), 20000, 3);
+      EXPECT_NEAR(a.mean, 1.0, 3.0 * a.standard_error) << "coat_roughness " << r << " theta " << theta;
+      std::printf("layered white furnace, coat_roughness %s, %2.0f deg: %.4f +- %.4f\n", r, theta, a.mean, a.standard_error);
+    }
+  }
+  const BrdfPtr single = testing::make("layered", {{"coat_roughness", "0.6"}, {"base_color", "1"}, {"walk_samples", "1"},
+                                                   {"coat_scattering", "single"}});
+  const Mean a = albedo_by_sampling(*single, testing::dir(0.0, 20.0), 20000, 3);
+  EXPECT_LT(a.mean, 1.0 - 10.0 * a.standard_error);
+  std::printf("layered white furnace, single scattering, coat_roughness 0.6: %.4f +- %.4f\n", a.mean, a.standard_error);
 }
 
 }  // namespace
