@@ -187,7 +187,7 @@ TEST(Layered, ClearCoatOverWhiteLambertIsAWhiteFurnace) {
   for (const char* r : {"0.3", "0.6", "1"}) {
     const BrdfPtr f = testing::make("layered", {{"coat_roughness", r}, {"base_color", "1"}, {"walk_samples", "1"}});
     for (double theta : {0.0, 60.0}) {
-      const Mean a = albedo_by_sampling(*f, testing::dir(theta, 20.0), 80000, 3);
+      const Mean a = albedo_by_sampling(*f, testing::dir(theta, 20.0), 150000, 3);
       EXPECT_NEAR(a.mean, 1.0, 3.0 * a.standard_error) << "coat_roughness " << r << " theta " << theta;
       std::printf("layered white furnace, coat_roughness %s, %2.0f deg: %.4f +- %.4f\n", r, theta, a.mean, a.standard_error);
     }
