@@ -127,8 +127,8 @@ double RoughDielectric::walk_visible_normal_pdf(const Vec3& v, const Vec3& m) co
   const double c = dot(v, m);
   if (m.z <= 0.0 || c <= 0.0) return 0.0;
   // The projected area of the normals facing v, integral max(0, v.m) D(m) dm: v.z (1 + Lambda(v)) above, and
-  // below, where Lambda(v) = -1 - Lambda(-v) (Heitz et al. 2016, the microvolume's Lambda), |v.z| Lambda(-v); its limit alpha / 2 at
-  // the horizon (Lambda ~ alpha tan(theta) / 2), where Lambda itself is 0 / 0.
+  // below, where Lambda(v) = -1 - Lambda(-v) (Heitz et al. 2016, the microvolume's Lambda), |v.z| Lambda(-v);
+  // its limit alpha / 2 at the horizon (Lambda ~ alpha tan(theta) / 2), where Lambda itself is 0 / 0.
   const double l = v.z != 0.0 ? lambda(v) : 0.0;
   const double area = v.z > 0.0 ? v.z * (1.0 + l) : (v.z < 0.0 ? -v.z * l : 0.5 * m_alpha);
   if (!(area > 0.0)) return 0.0;
@@ -142,7 +142,8 @@ double RoughDielectric::phase_reflection(const Vec3& v, const Vec3& t, double et
   const Vec3 m = h / std::sqrt(len2);
   const double c = dot(v, m);
   if (m.z <= 0.0 || c <= 0.0) return 0.0;
-  // F D_v(m) / (4 v.m): the visible normal's density times reflection's Jacobian (Heitz et al. 2016, the dielectric phase function).
+  // F D_v(m) / (4 v.m): the visible normal's density times reflection's Jacobian (Heitz et al. 2016, the
+  // dielectric phase function).
   return kernel::F_dielectric(c, eta) * walk_visible_normal_pdf(v, m) / (4.0 * c);
 }
 
