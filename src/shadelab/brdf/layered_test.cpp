@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
 
 #include "shadelab/brdf/test_util.h"
 #include "shadelab/kernels/kernels.h"
@@ -51,16 +52,21 @@ double smooth_coat_albedo(double mu, double eta, double rho) {
 }
 
 TEST(Layered, SmoothCoatOverLambertMeetsTheOracle) {
-  // >= 1e5 walks per configuration (one per sample), within 3 standard errors.
+  // >= 1e5 walks per configuration (one per sample), within 3 standard errors; the default coat (multiple
+  // scattering) at every configuration, the single-scattering coat at the first.
   const int n = 100000;
-  for (const auto& [eta, rho] : {std::pair{1.5, 0.8}, std::pair{1.5, 1.0}, std::pair{1.33, 0.3}, std::pair{2.0, 0.6}}) {
+  for (const auto& [eta, rho, scattering] :
+       {std::tuple{1.5, 0.8, "multiple"}, std::tuple{1.5, 1.0, "multiple"}, std::tuple{1.33, 0.3, "multiple"},
+        std::tuple{2.0, 0.6, "multiple"}, std::tuple{1.5, 0.8, "single"}}) {
     const BrdfPtr f = testing::make("layered", {{"coat_roughness", "0"}, {"coat_ior", std::to_string(eta)},
-                                                {"base_color", std::to_string(rho)}, {"walk_samples", "1"}});
+                                                {"base_color", std::to_string(rho)}, {"walk_samples", "1"},
+                                                {"coat_scattering", scattering}});
     for (double theta : {0.0, 45.0, 75.0}) {
       const Mean a = albedo_by_sampling(*f, testing::dir(theta, 20.0), n, 1);
       const double expected = smooth_coat_albedo(std::cos(theta * pi / 180.0), eta, rho);
       EXPECT_NEAR(a.mean, expected, 3.0 * a.standard_error)
-          << "eta " << eta << " rho " << rho << " theta " << theta << " (se " << a.standard_error << ")";
+          << "eta " << eta << " rho " << rho << " theta " << theta << " " << scattering << " (se " << a.standard_error
+          << ")";
     }
   }
 }
