@@ -20,7 +20,7 @@ subset=(
   "shadelab_kernels_tests:*-Sheen.TableInterpolationErrorBelow1e4"  # 15 s of quadrature, no new code path
   "shadelab_image_tests:*"
   "shadelab_core_tests:*"
-  "shadelab_brdf_tests:*-Layered.SmoothCoatOverLambertMeetsTheOracle:Layered.TheOracleTellsADifferentBaseApart:Layered.IsReciprocalInExpectation"
+  "shadelab_brdf_tests:*-Layered.SmoothCoatOverLambertMeetsTheOracle:Layered.TheOracleTellsADifferentBaseApart:Layered.IsReciprocalInExpectation:Layered.ClearCoatOverWhiteLambertIsAWhiteFurnace"
   "shadelab_light_tests:*"
   "shadelab_plot_tests:*"
 )

@@ -42,10 +42,11 @@ struct LayeringAlbedoRow {
   double truth_error = 0.0;     // its standard error
   double model = 0.0;           // the glTF form
   double albedo_scaled = 0.0;   // the albedo-scaled form
-  // The truth's own white furnace: `layered` with the same coat over a white base (base_color 1). Its rough
-  // dielectric interface scatters once per crossing (Walter et al. 2007), so it loses energy that a multiple-
-  // scattering interface would keep: 0.93 at coat roughness 0.3, 0.65 at 0.6, 0.32 at 1 (normal incidence). Where
-  // this is well below 1, the truth is not one a conserving shortcut can meet, and the difference says so.
+  // The truth's own white furnace: `layered` with the same coat over a white base (base_color 1). Its coat
+  // scatters multiply on its microsurface (coat_scattering = multiple, Heitz et al. 2016), so over Lambert this
+  // is 1 within noise; over a metal it is the base's own single-scattering loss. (With a single-scattering coat it
+  // was 0.93 at coat roughness 0.3, 0.65 at 0.6, 0.32 at 1.) Where it is well below 1, the truth is not one a
+  // conserving shortcut can meet, and the difference says so.
   double truth_furnace = 0.0;
 };
 

@@ -74,7 +74,7 @@ std::uint64_t pair_hash(const Vec3& wi, const Vec3& wo, std::uint64_t seed) {
 
 }  // namespace
 
-LayeredSlab::LayeredSlab(const Params& p) : m_p(p), m_coat(p.coat_ior, p.coat_alpha) {
+LayeredSlab::LayeredSlab(const Params& p) : m_p(p), m_coat(p.coat_ior, p.coat_alpha, p.coat_scattering) {
   switch (p.base) {
     case Base::lambert: m_base = std::make_shared<Lambert>(p.base_color); break;
     case Base::conductor:
@@ -153,18 +153,76 @@ Rgb LayeredSlab::walk(const Vec3& wi, const Vec3& wo, Rng& rng) const {
   return f;
 }
 
+Rgb LayeredSlab::walk_multiple(const Vec3& wi, const Vec3& wo, Pcg32& rng) const {
+  // The coat's own reflection, from one walk on its microsurface.
+  Rgb f = Rgb::gray(m_coat.eval_walk(wo, wi, Transport::radiance, rng));
+  const auto entry = m_coat.sample_walk(wo, rng, Transport::radiance);
+  if (!entry || entry->wi.z >= 0.0) return f;  // reflected by the coat: in its term above
+  // The exit direction e below the coat, a walk from wi (importance: f*(wi, e) |e.z| / p(e) = its weight); a
+  // walk from wi that is reflected gives no next-event path this time.
+  const auto exit = m_coat.sample_walk(wi, rng, Transport::importance);
+  const bool has_exit = exit && exit->wi.z < 0.0;
+  const Vec3 e = has_exit ? exit->wi : Vec3{0.0, 0.0, -1.0};
+  const Rgb exit_factor = has_exit ? transmittance(e) * exit->weight : Rgb{};
+  const double exit_proxy = has_exit ? m_coat.pdf(wi, e, Lobes::transmission) : 0.0;  // the stand-in density
+  Rgb beta = Rgb::gray(entry->weight);
+  Vec3 w = entry->wi;  // travelling down
+  for (int depth = 0; depth < max_depth; ++depth) {
+    if (depth > 3) {
+      const double m = beta.max_component();
+      if (m < 0.25) {
+        const double q = 1.0 - m;
+        if (rng.next_double() < q) break;
+        beta = beta / (1.0 - q);
+      }
+    }
+    beta = beta * transmittance(w);  // down to the base
+    const Vec3 v = -w;               // the base's view direction
+    if (has_exit) {
+      const Rgb fb = m_base->eval(-e, v);
+      if (fb.max_component() > 0.0) {
+        // The power heuristic (Veach 1997 eq. 9.13) with the stand-in; all of it where both densities are 0.
+        const double a = exit_proxy * exit_proxy;
+        const double pb = m_base->pdf(-e, v);
+        const double weight = std::isinf(exit_proxy) || !(a + pb * pb > 0.0) ? 1.0 : a / (a + pb * pb);
+        f += beta * fb * exit_factor * weight;
+      }
+    }
+    const double ub0 = rng.next_double();
+    const double ub1 = rng.next_double();
+    const double ub2 = rng.next_double();
+    const BrdfSample bs = m_base->sample(v, Vec2{ub0, ub1}, ub2);
+    if (!(bs.pdf > 0.0) || bs.wi.z <= 0.0 || !(bs.weight.max_component() > 0.0)) break;
+    beta = beta * bs.weight;
+    w = bs.wi;  // travelling up
+    const double q = m_coat.pdf(wi, -w, Lobes::transmission);
+    const double weight = power_heuristic(bs.pdf, q);  // the complement of the next-event weight (bs.pdf > 0)
+    if (weight > 0.0) {
+      const double ft = m_coat.eval_walk(-w, wi, Transport::radiance, rng);
+      if (ft > 0.0) f += beta * transmittance(w) * (ft * weight);
+    }
+    beta = beta * transmittance(w);  // up to the coat
+    const auto internal = m_coat.sample_walk(-w, rng, Transport::radiance);
+    if (!internal || internal->wi.z >= 0.0) break;  // out through the coat: counted by the two estimates
+    beta = beta * internal->weight;
+    w = internal->wi;  // travelling down again
+  }
+  return f;
+}
+
 LayeredSlab::Estimate LayeredSlab::estimate(const Vec3& wi, const Vec3& wo, int walks, Pcg32& rng) const {
+  const bool multiple = m_p.coat_scattering == RoughDielectric::Scattering::multiple;
   Rgb sum;
   Rgb sum2;
   for (int s = 0; s < walks; ++s) {
-    const Rgb x = walk(wi, wo, rng);
+    const Rgb x = multiple ? walk_multiple(wi, wo, rng) : walk(wi, wo, rng);
     sum += x;
     sum2 += x * x;
   }
   const double n = walks;
   const Rgb mean = sum / n;
   Estimate out;
-  out.mean = Rgb::gray(m_coat.eval(wo, wi, Transport::radiance)) + mean;
+  out.mean = multiple ? mean : Rgb::gray(m_coat.eval(wo, wi, Transport::radiance)) + mean;
   if (walks > 1) {
     for (int c = 0; c < 3; ++c) {
       const double var = std::max(0.0, (sum2[c] - n * mean[c] * mean[c]) / (n - 1.0));
@@ -250,6 +308,7 @@ ModelInfo layered_model() {
       {"coat_roughness", ParamKind::scalar, "0.1", 0.0, 1.0, {}, "perceptual roughness of the coat, alpha = r^2 (>= 1e-4)", 0, {}},
       {"coat_color", ParamKind::color, "1", 0.0, 1.0, {}, "transmittance through the slab at normal incidence (thickness 1)", 0, {}},
       {"coat_thickness", ParamKind::scalar, "1", 0.0, 100.0, {}, "optical thickness of the slab, in units where coat_color is its transmittance", 0, {}},
+      {"coat_scattering", ParamKind::choice, "multiple", 0, 0, {"single", "multiple"}, "the coat's microsurface: scatters once (Walter 2007) or until the light leaves (Heitz 2016)", 0, {}},
       {"base", ParamKind::choice, "lambert", 0, 0, {"lambert", "conductor", "ggx"}, "the opaque base under the slab", 0, {}},
       {"base_color", ParamKind::color, "0.8", 0.0, 1.0, {}, "lambert: albedo; conductor: f0; ggx: kd", 0, {}},
       {"base_roughness", ParamKind::scalar, "0.3", 0.0, 1.0, {}, "perceptual roughness of a conductor or ggx base (alpha >= 1e-4)", 0, {}},
@@ -272,6 +331,8 @@ ModelInfo layered_model() {
     q.coat_alpha = alpha_from_perceptual_roughness(p.scalar("coat_roughness"));
     q.coat_color = p.color("coat_color");
     q.coat_thickness = p.scalar("coat_thickness");
+    q.coat_scattering = pick_choice<RoughDielectric::Scattering>(
+        p.choice("coat_scattering"), {{"multiple", RoughDielectric::Scattering::multiple}, {"single", RoughDielectric::Scattering::single}});
     q.base = pick_choice<LayeredSlab::Base>(p.choice("base"), {{"lambert", LayeredSlab::Base::lambert},
                                                                {"conductor", LayeredSlab::Base::conductor},
                                                                {"ggx", LayeredSlab::Base::ggx}});

@@ -18,6 +18,15 @@
 //   and tint base_f82, kernels/fresnel.sl) | ggx (the registry's ggx: kd = base_color, Schlick f0 = base_f0,
 //   Kulla-Conty multiple scattering). The base sees the directions inside the slab.
 //   coat_ior = 1 is no interface: f = T(wo) f_base(wi, wo) T(wi) exactly (no walk).
+//   coat_scattering = multiple (the default): the coat scatters many times on its microsurface (Heitz et al.
+//   2016; rough_dielectric.h sample_walk, eval_walk), so a clear coat over a white base conserves energy. Then
+//   every coat crossing is a walk on the microsurface: the entry, the exit direction e and each internal
+//   reflection are walk samples (a walk that leaves on the other side ends that branch: its light is counted by
+//   the estimates), the coat's reflection f_coat,r(wo, wi) and its transmission along the base's sampled
+//   direction are one-walk estimates (eval_walk), and the power heuristic weighs the two ways out with the
+//   single-scattering pdf standing in for the walk's (unknown) one: any weights that sum to 1 keep it unbiased
+//   (where both densities are 0 the next-event path takes all). coat_scattering = single: one scattering per
+//   crossing (Walter et al. 2007), which loses energy at rough coats (docs/models/layering.md).
 //
 // eval is an unbiased estimate, the mean of walk_samples walks, and a deterministic function of (wi, wo, seed):
 // its random numbers come from PCG32 seeded by a hash of the six coordinates and the seed, so any thread or
@@ -45,6 +54,7 @@ class LayeredSlab final : public Brdf {
     double coat_alpha = 0.01;
     Rgb coat_color{1.0, 1.0, 1.0};
     double coat_thickness = 1.0;
+    RoughDielectric::Scattering coat_scattering = RoughDielectric::Scattering::multiple;
     Base base = Base::lambert;
     Rgb base_color{0.8, 0.8, 0.8};
     double base_alpha = 0.09;
@@ -83,6 +93,8 @@ class LayeredSlab final : public Brdf {
   double lobe_alpha() const;
   template <typename Rng>
   Rgb walk(const Vec3& wi, const Vec3& wo, Rng& rng) const;
+  // coat_scattering = multiple: one walk's estimate of the whole f(wi, wo), the coat's reflection included.
+  Rgb walk_multiple(const Vec3& wi, const Vec3& wo, Pcg32& rng) const;
   // The mean of `walks` walks from rng, plus the coat's reflection; with the walks' standard error.
   Estimate estimate(const Vec3& wi, const Vec3& wo, int walks, Pcg32& rng) const;
 
