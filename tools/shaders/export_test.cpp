@@ -47,6 +47,15 @@ TEST(Export, AStochasticModelIsRefusedByName) {
             "shaders are measured against");
 }
 
+// openpbr's kernel is C++-only (its dielectric table exceeds a GLSL ES uniform block): one line says so.
+TEST(Export, AModelWithoutAShaderIsRefusedByName) {
+  auto ex = export_model("openpbr", {}, ExportOptions{});
+  ASSERT_FALSE(ex.has_value());
+  EXPECT_EQ(ex.error().message,
+            "model 'openpbr' has no shader: its dielectric albedo table (24 x 32 x 32) exceeds a GLSL ES uniform block "
+            "and the kernel is not in the exporter's list (docs/models/openpbr.md, \"Shaders\")");
+}
+
 TEST(Export, EveryModelHasABindingThatMatchesItsKernelStruct) {
   for (const auto& m : brdf_models()) {
     if (make_brdf(m.name).value()->is_stochastic() || !m.no_shader.empty()) continue;  // no shader: the Monte Carlo ground truth; openpbr (ModelInfo::no_shader)
