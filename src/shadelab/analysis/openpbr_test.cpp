@@ -97,7 +97,7 @@ TEST(OpenpbrFurnace, ReciprocalFormMeasured) {
                          {"fuzz_roughness", std::to_string(r)}, {"layering", "reciprocal"}});
       const BrdfPtr f = make("openpbr", p);
       double lo = 1e9, hi = -1e9;
-      for (double t : {0.0, 30.0, 60.0, 75.0, 85.0}) {
+      for (double t : {0.0, 60.0, 85.0}) {
         const double a = furnace_albedo(*f, t);
         lo = std::min(lo, a);
         hi = std::max(hi, a);

@@ -50,7 +50,7 @@ TEST(OpenpbrTable, InterpolationErrorAgainstTheConvergedIntegral) {
     for (double ior : {1.05, 1.2, 1.33, 1.5, 1.77, 2.2, 3.0, 5.0}) {
       const double e = (ior - 1.0) / (ior + 1.0);
       const OpenpbrDielectricRows rows = openpbr_dielectric_rows(alpha, e);
-      for (double theta = 0.0; theta <= 85.0; theta += 2.5) {
+      for (double theta = 0.0; theta <= 85.0; theta += 5.0) {
         const double mu = std::cos(theta * kPi / 180.0);
         const auto [ref, ref_err] = dielectric_directional_albedo(mu, alpha, e, 128);
         const double err = std::abs(openpbr_dielectric_energy_at(rows, mu) - ref);
