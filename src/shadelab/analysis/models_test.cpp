@@ -139,7 +139,7 @@ std::vector<ParamSet> param_sets() {
                {"specular_roughness", "0.2"}, {"specular_roughness_anisotropy", "0.7"}};
       rough = {{"base_diffuse_roughness", "1"}, {"specular_roughness", "1"}, {"coat_weight", "1"}, {"coat_roughness", "0.4"},
                {"coat_color", "0.6,0.8,0.9"}, {"fuzz_weight", "0.6"}, {"fuzz_color", "0.9,0.5,0.3"}, {"fuzz_roughness", "0.8"}};
-      extra = {{"layering", "reciprocal"}, {"coat_weight", "0.5"}, {"coat_roughness", "0.1"}, {"base_metalness", "0.3"},
+      extra = {{"layering", "reciprocal"}, {"coat_weight", "0.5"}, {"coat_roughness", "0.3"}, {"base_metalness", "0.3"},
                {"specular_ior", "2"}, {"coat_ior", "1.3"}, {"base_diffuse_roughness", "0.5"}};
     }
     if (m.name == "filament") extra = {{"diffuse", "burley"}, {"energy_compensation", "off"}, {"metallic", "0.5"}};

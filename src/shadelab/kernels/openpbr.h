@@ -30,14 +30,14 @@ inline real dielectric_energy_average_texel(int k, int row) {
 #include "shadelab/kernels/openpbr.sl"
 // clang-format on
 
-// The table with its quadrature's error estimates, for tests and for `bake lut`-like tools.
+// The table, for tests and for `bake lut`-like tools (its quadrature's error: dielectric_directional_albedo's
+// estimate, and kernels/openpbr_test.cpp).
 struct DielectricEnergyTable {
   int slices = 0;
   int rows = 0;
   int cols = 0;
   std::vector<double> e;        // slices * rows * cols (row 0 unused: the exact Fresnel)
   std::vector<double> e_avg;    // slices * rows
-  std::vector<double> e_error;  // the quadrature's estimated absolute error per texel
   double seconds = 0.0;         // wall time of the computation
 };
 const DielectricEnergyTable& dielectric_energy_table();

@@ -23,7 +23,7 @@ constexpr int kRule = 48;  // Gauss-Legendre nodes per axis (and per piece along
 
 // E_d at (mu, alpha) for every slice at once (out[k], k < slices), with n-node rules. The azimuth of the cap is
 // folded to [0, pi] (wo in the xz-plane: the integrand is even in phi) and integrated by Gauss-Legendre; along the
-// cap's height u1 the part where wi falls below the horizon is cut off first (scanned on 64 cells, the sign changes
+// cap's height u1 the part where wi falls below the horizon is cut off first (scanned on 512 cells, the sign changes
 // of wi.z refined by bisection), so that each Gauss-Legendre piece integrates a smooth function: G2 -> 0 linearly at
 // wi.z = 0, a kink a rule across it would resolve only as n^-2.
 void directional_albedo_slices(double mu, double alpha, int n, const double* e, int slices, double* out) {
@@ -117,7 +117,6 @@ double column_mu(int j, int i) {
 
 struct Texels {
   std::vector<double> e;
-  std::vector<double> error;
   double seconds = 0.0;
 };
 
@@ -126,7 +125,6 @@ Texels compute_texels() {
   const int slices = OPENPBR_DE_SLICES, rows = GGX_ENERGY_ROWS, cols = GGX_ENERGY_COLS;
   Texels t;
   t.e.assign(static_cast<std::size_t>(slices * rows * cols), 0.0);
-  t.error.assign(t.e.size(), 0.0);
   double e_nodes[OPENPBR_DE_SLICES];
   for (int k = 0; k < slices; ++k) e_nodes[k] = slice_e(k);
 #ifdef __EMSCRIPTEN__
@@ -136,17 +134,13 @@ Texels compute_texels() {
 #endif
   const auto work = [&](unsigned first) {
     double fine[OPENPBR_DE_SLICES];
-    double coarse[OPENPBR_DE_SLICES];
     for (int j = 1 + static_cast<int>(first); j < rows; j += static_cast<int>(threads)) {
       const double alpha = ggx_energy_row_alpha(j);
       for (int i = 0; i < cols; ++i) {
         const double mu = column_mu(j, i);
         directional_albedo_slices(mu, alpha, kRule, e_nodes, slices, fine);
-        directional_albedo_slices(mu, alpha, kRule / 2, e_nodes, slices, coarse);
         for (int k = 0; k < slices; ++k) {
-          const auto c = static_cast<std::size_t>((k * rows + j) * cols + i);
-          t.e[c] = std::clamp(fine[k], 0.0, 1.0);
-          t.error[c] = std::abs(fine[k] - coarse[k]);
+          t.e[static_cast<std::size_t>((k * rows + j) * cols + i)] = std::clamp(fine[k], 0.0, 1.0);
         }
       }
     }
@@ -216,7 +210,6 @@ const DielectricEnergyTable& dielectric_energy_table() {
     t.rows = GGX_ENERGY_ROWS;
     t.cols = GGX_ENERGY_COLS;
     t.e = texels().e;
-    t.e_error = texels().error;
     t.seconds = texels().seconds;
     const double* a = dielectric_energy_average_texels();
     t.e_avg.assign(a, a + t.slices * t.rows);
