@@ -313,13 +313,10 @@ struct OpenpbrState {
   real fuzz_roughness;
 };
 
-// The metal's F82-tint Fresnel times specular_weight at V.H = c (Metal, F_metal = xi F82).
+// The metal's F82-tint Fresnel times specular_weight at V.H = c (Metal, F_metal = xi F82; fresnel.sl's F_schlick_f82,
+// checked there against the specification's form).
 inline rgb openpbr_f82(OpenpbrState s, real c) {
-  real m = clamp(c, 0.0, 1.0);
-  real n = 1.0 - m;
-  real n5 = n * n * n * n * n;
-  rgb schlick = s.metal_f0 + (rgb(1.0) - s.metal_f0) * n5;
-  return (schlick - s.metal_a * (m * n5 * n)) * s.specular_weight;
+  return F_schlick_f82_rgb(c, s.metal_f0, s.specular_color) * s.specular_weight;
 }
 
 inline OpenpbrState openpbr_prepare(OpenpbrParams p) {
