@@ -32,7 +32,7 @@ TEST(Cli, BrdfListHasEveryModelWithParameters) {
   for (const auto& m : j["models"]) names.push_back(m["name"]);
   for (const char* want : {"lambert", "phong", "phong-modified", "blinn-phong", "blinn-phong-modified", "cook-torrance",
                            "minimalist-cook-torrance", "ward", "ward-anisotropic", "lafortune", "wrapped-diffuse",
-                           "ggx", "burley", "filament", "gltf", "principled-v1", "layered"}) {
+                           "ggx", "burley", "filament", "gltf", "principled-v1", "layered", "openpbr"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   }
   for (const auto& m : j["models"]) {

@@ -263,6 +263,7 @@ Result<ShaderExport> export_model(std::string_view model, const ParamAssignments
     return make_error("model '" + info->name + "' has no shader: its eval is a Monte Carlo estimate (a random walk), " +
                       "the ground truth that shaders are measured against");
   }
+  if (!binding && !info->no_shader.empty()) return make_error("model '" + info->name + "' has no shader: " + info->no_shader);
   if (!binding) throw std::logic_error("model " + info->name + " has no kernel binding (Brdf::kernel_binding)");
 
   const Lang lang = options.lang;

@@ -47,9 +47,18 @@ TEST(Export, AStochasticModelIsRefusedByName) {
             "shaders are measured against");
 }
 
+// openpbr's kernel is C++-only (its dielectric table exceeds a GLSL ES uniform block): one line says so.
+TEST(Export, AModelWithoutAShaderIsRefusedByName) {
+  auto ex = export_model("openpbr", {}, ExportOptions{});
+  ASSERT_FALSE(ex.has_value());
+  EXPECT_EQ(ex.error().message,
+            "model 'openpbr' has no shader: its dielectric albedo table (24 x 32 x 32) exceeds a GLSL ES uniform block "
+            "and the kernel is not in the exporter's list (docs/models/openpbr.md, \"Shaders\")");
+}
+
 TEST(Export, EveryModelHasABindingThatMatchesItsKernelStruct) {
   for (const auto& m : brdf_models()) {
-    if (make_brdf(m.name).value()->is_stochastic()) continue;  // no shader: the Monte Carlo ground truth
+    if (make_brdf(m.name).value()->is_stochastic() || !m.no_shader.empty()) continue;  // no shader: the Monte Carlo ground truth; openpbr (ModelInfo::no_shader)
     auto brdf = make_brdf(m.name);
     ASSERT_TRUE(brdf.has_value()) << m.name;
     const auto binding = (*brdf)->kernel_binding();
@@ -136,7 +145,7 @@ TEST(Export, EntryNames) {
 // glslang's ES 3.00 rules.
 TEST(Export, EveryModelCompilesInEveryLanguage) {
   for (const auto& m : brdf_models()) {
-    if (make_brdf(m.name).value()->is_stochastic()) continue;  // no shader: the Monte Carlo ground truth
+    if (make_brdf(m.name).value()->is_stochastic() || !m.no_shader.empty()) continue;  // no shader: the Monte Carlo ground truth; openpbr (ModelInfo::no_shader)
     for (Lang lang : kLangs) {
       for (bool uniforms : {false, true}) {
         SCOPED_TRACE(m.name + " " + lang_name(lang) + (uniforms ? " --uniforms" : ""));
@@ -184,7 +193,7 @@ TEST(Export, ConstantTablesCompileInEveryLanguage) {
 // glslang's reflection (-q) lists each block member's byte offset: an independent reading of the layout rules.
 TEST(Export, UniformOffsetsAgreeWithGlslangReflection) {
   for (const auto& m : brdf_models()) {
-    if (make_brdf(m.name).value()->is_stochastic()) continue;  // no shader: the Monte Carlo ground truth
+    if (make_brdf(m.name).value()->is_stochastic() || !m.no_shader.empty()) continue;  // no shader: the Monte Carlo ground truth; openpbr (ModelInfo::no_shader)
     for (Lang lang : {Lang::glsl, Lang::hlsl}) {
       SCOPED_TRACE(m.name + " " + lang_name(lang));
       const ShaderExport ex = exported(m.name, lang, true);

@@ -29,7 +29,7 @@ BrdfSample Lambert::sample(const Vec3& wo, Vec2 u, double) const {
 
 ModelInfo lambert_model() {
   return {"lambert", "kd / pi", "Lambert 1760; lecture 5, 'Pure Lambertian'", {kd_param("0.8")},
-          [](const ParamValues& p) -> Result<BrdfPtr> { return BrdfPtr(new Lambert(p.color("kd"))); }, {}, {}};
+          [](const ParamValues& p) -> Result<BrdfPtr> { return BrdfPtr(new Lambert(p.color("kd"))); }, {}, {}, {}};
 }
 
 }  // namespace shadelab

@@ -23,6 +23,7 @@ std::span<const ModelInfo> brdf_models() {
       gltf_model(),
       layered_model(),
       principled_v1_model(),
+      openpbr_model(),
   };
   return models;
 }

@@ -34,6 +34,9 @@ struct ModelInfo {
   std::optional<SplitSumSweep> split_sum_sweep;  // set by the models whose BRDFs answer split_sum_inputs()
   // The parameter a scene's specular (ks) texture drives for these parameter values; unset: "ks".
   std::function<std::string(const ParamValues&)> ks_texture_param;
+  // Set by a model without a kernel binding that is not stochastic: why it has no shader (the exporter's refusal
+  // reads "model 'NAME' has no shader: " and this), e.g. openpbr's tables.
+  std::string no_shader;
 };
 
 // All models, in a fixed order.
@@ -70,5 +73,6 @@ ModelInfo filament_model();
 ModelInfo gltf_model();
 ModelInfo layered_model();
 ModelInfo principled_v1_model();
+ModelInfo openpbr_model();
 
 }  // namespace shadelab

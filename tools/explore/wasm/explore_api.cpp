@@ -113,7 +113,7 @@ json models() {
   for (const auto& m : brdf_models()) {
     // The explorer draws every model with its exported shader; the layered ground truth (a Monte Carlo
     // estimate, Brdf::is_stochastic) has none, and reaches the explorer with the layered front-end work.
-    if (make_brdf(m.name).value()->is_stochastic()) continue;
+    if (make_brdf(m.name).value()->is_stochastic() || !m.no_shader.empty()) continue;  // and openpbr: no shader (ModelInfo::no_shader)
     json params = json::array();
     for (const auto& p : m.params) {
       json jp = {{"name", p.name}, {"kind", kind_name(p.kind)}, {"default", p.default_value}, {"description", p.description}};
