@@ -26,7 +26,8 @@ printf '%s\n' "$block" > "$work/readme_block.sh"
 
 cd "$work"
 start=$SECONDS
-if PS4='+ [${SECONDS}s] ' bash -euo pipefail -x readme_block.sh > readme_block.log 2>&1; then
+# (PS4 set inside: bash ignores an inherited PS4 when run as root)
+if bash -euo pipefail -c 'PS4="+ [\${SECONDS}s] "; set -x; . ./readme_block.sh' > readme_block.log 2>&1; then
   grep '^+ \[' readme_block.log | grep -v '^+ \[[0-9]*s\] \(export\|env=\)' || true
   echo "readme_commands: all $(grep -cv '^\s*$' readme_block.sh) lines ran in $((SECONDS - start)) s"
 else

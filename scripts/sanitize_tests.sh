@@ -23,7 +23,9 @@ subset=(
   "shadelab_kernels_tests:*-Sheen.TableInterpolationErrorBelow1e4:OpenpbrTable.InterpolationErrorAgainstTheConvergedIntegral:OpenpbrTable.QuadratureAgreesWithTheGgxEnergyTable"
   "shadelab_image_tests:*"
   "shadelab_core_tests:*"
-  "shadelab_brdf_tests:*-Layered.SmoothCoatOverLambertMeetsTheOracle:Layered.TheOracleTellsADifferentBaseApart:Layered.IsReciprocalInExpectation:Layered.ClearCoatOverWhiteLambertIsAWhiteFurnace"
+  # (not the measured model's arithmetic over whole 35 MB tables, Measured.* and Merl.MeasureEvaluates...: the MERL
+  # parser's tests run sanitized)
+  "shadelab_brdf_tests:*-Measured.*:Merl.MeasureEvaluatesTheModelAtEachBinCentre:Layered.SmoothCoatOverLambertMeetsTheOracle:Layered.TheOracleTellsADifferentBaseApart:Layered.IsReciprocalInExpectation:Layered.ClearCoatOverWhiteLambertIsAWhiteFurnace"
   "shadelab_light_tests:*"
   "shadelab_plot_tests:*"
 )

@@ -138,7 +138,7 @@ std::vector<ParamSet> param_sets() {
     // slower; they are proved in analysis/openpbr_test.cpp and brdf/openpbr_test.cpp instead (docs/testing.md).
     if (m.name == "openpbr") {
       sharp = {{"base_metalness", "1"}, {"base_color", "0.9,0.6,0.3"}, {"specular_color", "0.8,0.9,1"},
-               {"specular_roughness", "0.2"}, {"specular_roughness_anisotropy", "0.7"}};
+               {"specular_roughness", "0.3"}, {"specular_roughness_anisotropy", "0.6"}};
       rough = {{"specular_roughness", "1"}, {"coat_weight", "1"}, {"coat_roughness", "0.4"}, {"coat_color", "0.6,0.8,0.9"},
                {"fuzz_weight", "0.6"}, {"fuzz_color", "0.9,0.5,0.3"}, {"fuzz_roughness", "0.8"}};
       extra = {{"layering", "reciprocal"}, {"base_metalness", "0.3"}, {"specular_ior", "2"}, {"specular_roughness", "0.5"}};

@@ -59,8 +59,9 @@ std::vector<FurnaceConfig> furnace_configs() {
 }
 
 double furnace_albedo(const Brdf& f, double theta_deg) {
+  // 1e-5: a hundredth of the claim's 1e-3 (1e-7 cost twice the time for digits the claim does not use).
   AlbedoOptions o;
-  o.quadrature.rel_tol = 1e-7;
+  o.quadrature.rel_tol = 1e-5;
   return directional_albedo(f, deg_to_rad(theta_deg), o).albedo.g;
 }
 
@@ -162,10 +163,23 @@ TEST(OpenpbrSamplers, ChiSquareOverFortyEightConfigurations) {
 
 TEST(OpenpbrSamplers, PdfIntegratesToOneAndWeightsAreFCosOverPdf) {
   double worst = 0.0;
-  for (const auto& p : materials()) {
+  for (std::size_t k = 0; k < materials().size(); ++k) {
+    const ParamAssignments& p = materials()[k];
     const BrdfPtr f = make("openpbr", p);
     for (double t : {0.0, 70.0}) {
-      const QuadratureResult q = pdf_integral(*f, view(t));
+      // The quadrature (0.4-1.8 s per integral, its evaluation budget) at 70 degrees for every material and at
+      // normal incidence for every third; the sampled pdf and weights at both.
+      if (t == 0.0 && k % 3 != 0) {
+        const SampleConsistency c = sample_consistency(*f, view(t), 20'000);
+        EXPECT_LE(c.max_pdf_error, 1e-6) << describe(p);
+        EXPECT_LE(c.max_weight_error, 1e-6) << describe(p);
+        EXPECT_EQ(c.non_finite, 0u) << describe(p);
+        continue;
+      }
+      QuadratureOptions qo;  // 1e-6, not the default 1e-9: the bounded VNDF's cut at the horizon stalls it there
+      qo.rel_tol = 1e-6;
+      qo.initial_intervals = 4;
+      const QuadratureResult q = pdf_integral(*f, view(t), qo);
       worst = std::max(worst, std::abs(q.value - 1.0));
       EXPECT_NEAR(q.value, 1.0, std::max(1e-6, 4.0 * q.error)) << describe(p) << " theta " << t;
       const SampleConsistency c = sample_consistency(*f, view(t), 20'000);
