@@ -45,7 +45,14 @@ void directional_albedo_slices(double mu, double alpha, int n, const double* e, 
       const double z = (1.0 - u1) * (1.0 + ws.z) - ws.z;
       const double sin_t = std::sqrt(std::clamp(1.0 - z * z, 0.0, 1.0));
       const vec3 hs = vec3(sin_t * cp, sin_t * sp, z) + ws;
-      h = normalize(vec3(alpha * hs.x, alpha * hs.y, hs.z));
+      const vec3 hv(alpha * hs.x, alpha * hs.y, hs.z);
+      if (dot(hv, hv) == 0.0) {  // the cap's lowest point at normal incidence (u1 = 1, ws = +Z): no normal there
+        h = vec3(0.0, 0.0, 1.0);
+        oh = 0.0;
+        wi = vec3(0.0, 0.0, -1.0);  // outside the integrand (it was 0/0, a NaN that every test read as outside)
+        return;
+      }
+      h = normalize(hv);
       oh = dot(wo, h);
       wi = h * (2.0 * oh) - wo;
     };
