@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libopenexr-dev libstb-dev libtbb-dev
+  libnlopt-dev
   libcairo2-dev fonts-dejavu-core
   libembree-dev libtinyobjloader-dev libtinygltf-dev
   blender-data
