@@ -42,11 +42,13 @@ void run_shininess(const ShininessOptions& o) {
         j["alpha"] = *m.alpha;
         j["roughness"] = std::sqrt(*m.alpha);
         j["residual"] = m.residual;
+        j["relative_residual"] = m.relative_residual;
         j["excess"] = m.excess;
       } else {
         j["alpha"] = nullptr;
         j["roughness"] = nullptr;
         j["residual"] = nullptr;
+        j["relative_residual"] = nullptr;
         j["excess"] = nullptr;
       }
       maps.push_back(j);
@@ -75,8 +77,8 @@ void run_shininess(const ShininessOptions& o) {
       fmt::print("  {:<8} undefined at n = {:g}   ({})\n", m.name, c.n, m.source);
       continue;
     }
-    fmt::print("  {:<8} alpha {:<10.5g} residual {:<10.5g} excess {:+8.1f}%   ({})\n", m.name, *m.alpha, m.residual,
-               100.0 * m.excess, m.source);
+    fmt::print("  {:<8} alpha {:<10.5g} residual {:<10.5g} ({:.1f}% of the lobe's own; excess {:+.1f}%)   ({})\n", m.name,
+               *m.alpha, m.residual, 100.0 * m.relative_residual, 100.0 * m.excess, m.source);
   }
 }
 

@@ -109,8 +109,10 @@ void run_fit(const FitCliOptions& o) {
   // Directional albedo, fit minus data (Rec. 709 luminance), theta_o = 0, 10, ..., 80 degrees.
   auto fitted = make_brdf(o.model, r.assignments);
   if (!fitted) throw UsageError(fitted.error().message);
+  // A tolerance for a table (a measured BRDF is trilinear between bins: the adaptive rule would refine every kink).
   AlbedoOptions ao;
-  ao.quadrature.rel_tol = 1e-6;
+  ao.quadrature.rel_tol = 1e-4;
+  ao.quadrature.abs_tol = 1e-6;
   std::vector<std::pair<double, double>> albedo;
   for (int deg = 0; deg <= 80; deg += 10) {
     const double t = deg * 3.14159265358979323846 / 180.0;
@@ -154,7 +156,8 @@ void run_fit(const FitCliOptions& o) {
   }
   fmt::print("fit {} to {} ({} configurations, metric {})\n", o.model, o.data, r.configurations, fit_metric_name(r.metric));
   for (const auto& p : r.params) {
-    fmt::print("  {:<12} {:<28} {}\n", p.name, numbers_text(p), p.fitted ? "fitted" : "fixed");
+    const bool fixed = std::any_of(fo.fixed.begin(), fo.fixed.end(), [&](const auto& a) { return a.first == p.name; });
+    fmt::print("  {:<12} {:<28} {}\n", p.name, numbers_text(p), p.fitted ? "fitted" : (fixed ? "fixed" : "default, not fitted"));
   }
   fmt::print("residual {:.6g} ({}; best of {} starts: ", r.residual, fit_metric_name(r.metric), r.start_residuals.size());
   for (std::size_t i = 0; i < r.start_residuals.size(); ++i) fmt::print("{}{:.3g}", i ? ", " : "", r.start_residuals[i]);

@@ -105,6 +105,7 @@ Result<ShininessConversion> convert_shininess(const std::string& from, const std
       if (!b) return b.error();
       m.residual = fit_residual(**b, data, metric);
       m.excess = c.residual > 0.0 ? m.residual / c.residual - 1.0 : 0.0;
+      m.relative_residual = scale > 0.0 ? m.residual / scale : 0.0;
     }
     c.mappings.push_back(std::move(m));
   }

@@ -35,6 +35,7 @@ struct ShininessMapping {
   std::string source;  // one line: where it comes from
   std::optional<double> alpha;  // unset where the mapping is undefined at n
   double residual = 0.0;
+  double relative_residual = 0.0;  // residual / the lobe's own size (ShininessConversion::relative_residual's scale)
   double excess = 0.0;  // residual / best residual - 1
 };
 
