@@ -75,36 +75,6 @@ py::list models() {
   return out;
 }
 
-bool is_number(py::handle v) {
-  if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v)) return false;
-  if (PyFloat_Check(v.ptr()) || PyLong_Check(v.ptr())) return true;
-  // NumPy scalars and 0-d arrays: anything that converts to float and is not a sequence.
-  if (py::isinstance<py::array>(v)) return py::reinterpret_borrow<py::array>(v).ndim() == 0;
-  return py::hasattr(v, "__float__") && !PySequence_Check(v.ptr());
-}
-
-// A Python parameter value as the text the CLI's --param takes: numbers in their shortest exact form,
-// sequences joined by ',' (a colour r,g,b), sequences of sequences by ';' (lobes); anything else as str()
-// so that the library's parser names what is wrong.
-std::string param_text(py::handle v) {
-  if (py::isinstance<py::str>(v)) return v.cast<std::string>();
-  if (is_number(v)) return number_text(py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>());
-  if (PySequence_Check(v.ptr()) && !PyBytes_Check(v.ptr()) && !PyByteArray_Check(v.ptr())) {
-    const py::sequence seq = py::reinterpret_borrow<py::sequence>(v);
-    std::string text;
-    bool groups = seq.size() > 0;
-    for (const auto item : seq) groups = groups && !py::isinstance<py::str>(item) && PySequence_Check(item.ptr());
-    const char* sep = groups ? ";" : ",";
-    bool first = true;
-    for (const auto item : seq) {
-      text += (first ? "" : sep) + param_text(item);
-      first = false;
-    }
-    return text;
-  }
-  return py::str(v).cast<std::string>();
-}
-
 struct PyBrdf {
   std::string name;
   ParamAssignments assignments;  // as given, in the CLI's text form

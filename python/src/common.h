@@ -193,4 +193,10 @@ py::array_t<float> image_array(Image image);
 // Six faces as one float32 (6, S, S, 3) array, in the OpenGL order +X, -X, +Y, -Y, +Z, -Z.
 py::array_t<float> cube_array(const CubeMap& cube);
 
+// A Python parameter value as the text the CLI's --param takes: numbers in their shortest exact form,
+// sequences joined by ',' (a colour r,g,b), sequences of sequences by ';' (lobes); anything else as str()
+// so that the library's parser names what is wrong. is_number: a Python or NumPy real scalar (not bool, not str).
+bool is_number(py::handle v);
+std::string param_text(py::handle v);
+
 }  // namespace shadelab::python

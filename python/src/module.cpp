@@ -23,4 +23,5 @@ the command-line tool prints. Loops run in C++ with the GIL released.)";
   shadelab::python::bind_light(m);
   shadelab::python::bind_images(m);
   shadelab::python::bind_render(m);
+  shadelab::python::bind_fit(m);
 }
