@@ -28,6 +28,8 @@ subset=(
   "shadelab_brdf_tests:*-Measured.*:Merl.MeasureEvaluatesTheModelAtEachBinCentre:Layered.SmoothCoatOverLambertMeetsTheOracle:Layered.TheOracleTellsADifferentBaseApart:Layered.IsReciprocalInExpectation:Layered.ClearCoatOverWhiteLambertIsAWhiteFurnace"
   "shadelab_light_tests:*"
   "shadelab_plot_tests:*"
+  # the fitter: NLopt's optimizer driving the models through their whole parameter boxes
+  "shadelab_fit_tests:*"
 )
 chosen=()
 if [ $# -eq 0 ]; then
