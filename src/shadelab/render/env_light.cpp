@@ -58,12 +58,31 @@ EnvironmentLight::EnvironmentLight(const Scene& scene) : m_scene(scene) {
   // table would give, without the table look-ups.
   m_constant = true;
   for (std::size_t i = 3; i < proposal.data.size(); ++i) m_constant = m_constant && proposal.data[i] == proposal.data[i % 3];
-  std::vector<double> weights(static_cast<std::size_t>(m_width) * static_cast<std::size_t>(m_height));
+  // Each cell's weight is the mean over the cell of what the radiance lookup returns (bilinear between texel
+  // centres, sample_latlong: x wraps, y clamps), times sin(theta). The mean of a bilinear interpolant over a cell is
+  // the separable filter (1, 6, 1) / 8 of the texel values in each axis (each half-cell averages a linear ramp:
+  // (c_-1 + 3 c_0) / 4 and (3 c_0 + c_+1) / 4). A table of the texels alone gave the half-texel rim that the
+  // lookup spreads around a one-texel sun only the floor's probability: fireflies (issue 42).
+  std::vector<double> lum(static_cast<std::size_t>(m_width) * static_cast<std::size_t>(m_height));
+  for (int y = 0; y < m_height; ++y)
+    for (int x = 0; x < m_width; ++x)
+      lum[static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(x)] =
+          std::max(0.0, luminance(proposal.at(x, y)));
+  const auto texel = [&](int x, int y) {
+    x = ((x % m_width) + m_width) % m_width;
+    y = std::clamp(y, 0, m_height - 1);
+    return lum[static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(x)];
+  };
+  static constexpr double k[3] = {1.0 / 8.0, 6.0 / 8.0, 1.0 / 8.0};
+  std::vector<double> weights(lum.size());
   double mean = 0.0;
   for (int y = 0; y < m_height; ++y) {
     const double sin_theta = std::sin(pi * (y + 0.5) / m_height);
     for (int x = 0; x < m_width; ++x) {
-      const double v = std::max(0.0, luminance(proposal.at(x, y))) * sin_theta;
+      double v = 0.0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) v += k[dy + 1] * k[dx + 1] * texel(x + dx, y + dy);
+      v *= sin_theta;
       weights[static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(x)] = v;
       mean += v;
     }

@@ -7,7 +7,8 @@
 // gradient) + the sun disk of the sky + every hemisphere light. The image is looked up bilinearly.
 // Sampling is a mixture: the sun cap (uniform in its solid angle, probability proportional to its power),
 // and a piecewise-constant 2D distribution over a lat-long proposal (the image's luminance, or the analytic
-// radiance baked at 256 x 128), times sin(theta), with a floor of 1e-3 of the mean so that every direction
+// radiance baked at 256 x 128), each cell weighted by the mean over it of the bilinear lookup (the texels filtered
+// by (1, 6, 1) / 8 in each axis), times sin(theta), with a floor of 1e-3 of the mean so that every direction
 // with radiance can be drawn. pdf(w) is the exact density of that mixture, so MIS weights and estimates are
 // unbiased whatever the proposal (PBR 4th ed. 12.5 for the lat-long Jacobian: d omega = 2 pi^2 sin(theta) du dv).
 #pragma once
