@@ -77,9 +77,9 @@ Result<UtiaTable> parse_utia(std::span<const char> bytes, const std::string& nam
     if (!std::isfinite(t.values[i])) {
       const std::size_t k = i % UtiaTable::plane;
       const std::size_t pv = k % 48, tv = (k / 48) % 6, pi_ = (k / 288) % 48, ti = k / 13824;
+      const auto phi = [](std::size_t j) { return std::to_string(j * 15 / 2) + (j % 2 ? ".5" : ""); };  // 7.5 k degrees
       return make_error(name + ": value of channel " + "RGB"[i / UtiaTable::plane] + " at theta_i " + std::to_string(15 * ti) +
-                        ", phi_i " + std::to_string(7.5 * static_cast<double>(pi_)).substr(0, 5) + ", theta_v " + std::to_string(15 * tv) +
-                        ", phi_v " + std::to_string(7.5 * static_cast<double>(pv)).substr(0, 5) + " degrees is not finite");
+                        ", phi_i " + phi(pi_) + ", theta_v " + std::to_string(15 * tv) + ", phi_v " + phi(pv) + " degrees is not finite");
     }
   }
   return t;
