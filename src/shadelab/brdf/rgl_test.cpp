@@ -95,19 +95,19 @@ void expect_one_line(const std::string& m, const std::string& what) {
 }
 
 TEST(RglTensor, ReadsTheContainerFieldByField) {
-  // A file written by hand: the magic, version 1.0, one uint16 field "ab" of shape [2] at offset 35.
+  // A file written by hand: the magic, version 1.0, one uint16 field "ab" of shape [2] at offset 41.
   std::vector<char> hand = {'t', 'e', 'n', 's', 'o', 'r', '_', 'f', 'i', 'l', 'e', '\0', 1, 0, 1, 0, 0, 0,  // 18
                             2, 0, 'a', 'b', 1, 0, 3,                                                      // +7 = 25
-                            43, 0, 0, 0, 0, 0, 0, 0,                                                      // offset 43
+                            41, 0, 0, 0, 0, 0, 0, 0,                                                      // offset 41
                             2, 0, 0, 0, 0, 0, 0, 0,                                                       // shape [2]
-                            7, 0, static_cast<char>(0xff), 0x12};                                         // 43..46
-  ASSERT_EQ(hand.size(), 47u);
+                            7, 0, static_cast<char>(0xff), 0x12};                                         // 41..44
+  ASSERT_EQ(hand.size(), 45u);
   auto t = parse_tensor_file(hand, "hand.bsdf");
   ASSERT_TRUE(t.has_value()) << t.error().message;
   ASSERT_EQ(t->fields.size(), 1u);
   EXPECT_EQ(t->fields[0].name, "ab");
   EXPECT_EQ(t->fields[0].dtype, TensorDtype::u16);
-  EXPECT_EQ(t->fields[0].offset, 43u);
+  EXPECT_EQ(t->fields[0].offset, 41u);
   EXPECT_EQ(t->fields[0].count, 2u);
   std::uint16_t v[2];
   std::memcpy(v, t->bytes.data() + t->fields[0].offset, 4);
@@ -263,7 +263,8 @@ TEST(Rgl, AtTableNodesItIsTheTableAndBetweenThemBetweenTheNeighbours) {
     return static_cast<double>(static_cast<float>(s.rgb[(static_cast<std::size_t>(3 + c) * 5 + static_cast<std::size_t>(y)) * 5 + static_cast<std::size_t>(x)]));
   };
   int nodes = 0, cells = 0;
-  for (int x = 0; x < 5; ++x) {
+  // From x = 1: at x = 0 (theta_m = 0) every y is the one direction wm = n.
+  for (int x = 1; x < 5; ++x) {
     for (int y = 0; y < 5; ++y) {
       const double theta_m = (x / 4.0) * (x / 4.0) * 0.5 * pi, phi_m = 0.3 + (y / 4.0) * two_pi - pi;
       const Vec3 wi = mirrored(wo, theta_m, phi_m);
@@ -286,7 +287,7 @@ TEST(Rgl, AtTableNodesItIsTheTableAndBetweenThemBetweenTheNeighbours) {
       ++cells;
     }
   }
-  EXPECT_GE(nodes, 10);
+  EXPECT_GE(nodes, 8);
   EXPECT_GE(cells, 6);
 }
 
