@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -378,6 +379,7 @@ TEST(Rgl, SampleAndPdfAgree) {
     const double mean = sum / n, sd = std::sqrt((sum2 / n - mean * mean) / n);
     EXPECT_LE(worst, 1e-9);
     EXPECT_NEAR(mean, 1.0, 5.0 * sd + 1e-3) << "theta_o " << theta_o << " sd " << sd << " below " << below;
+    std::printf("[ rgl ] theta_o %.1f: mean of q/pdf %.5f (sd %.5f), %d of %d samples below the horizon\n", theta_o, mean, sd, below, n);
   }
 }
 

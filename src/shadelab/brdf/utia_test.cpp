@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -216,6 +217,7 @@ TEST(Utia, PdfIntegratesToOneAndIsTheDensityOfTheSamples) {
     const double mean = sum / n, sd = std::sqrt((sum2 / n - mean * mean) / n);
     EXPECT_LE(worst, 1e-12);
     EXPECT_NEAR(mean, 1.0, 5.0 * sd);
+    std::printf("[ utia ] view z %.3f: pdf integral %.12f, mean of q/pdf %.5f (sd %.5f)\n", wo.z, integral, mean, sd);
   }
 }
 
