@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "shadelab/core/constants.h"
+#include "shadelab/core/text.h"
 #include "shadelab/sampling/warp.h"
 
 namespace shadelab {
@@ -115,7 +116,7 @@ Result<TensorFile> parse_tensor_file(std::vector<char> bytes, const std::string&
     TensorField f;
     f.name.assign(bytes.data() + p, name_length);
     p += name_length;
-    const std::string fname = which + " (\"" + f.name + "\")";
+    const std::string fname = which + " (\"" + printable(f.name) + "\")";  // a name from the file: escaped, cut
     if (size - p < 11) return make_error(name + ": " + fname + ": truncated before its dtype and offset");
     const auto ndim = load<std::uint16_t>(bytes.data() + p);
     const auto dtype = static_cast<std::uint8_t>(bytes[p + 2]);
