@@ -45,9 +45,11 @@ double elevation(const Vec3& d) {
   return 2.0 * std::asin(std::min(1.0, 0.5 * std::sqrt(d.x * d.x + d.y * d.y + (d.z - 1.0) * (d.z - 1.0))));
 }
 
+// A shape for a message: at most 6 sizes, then how many there are (a file may claim 65535).
 std::string shape_text(const std::vector<std::uint64_t>& s) {
   std::string t = "[";
-  for (std::size_t i = 0; i < s.size(); ++i) t += (i ? ", " : "") + std::to_string(s[i]);
+  for (std::size_t i = 0; i < s.size() && i < 6; ++i) t += (i ? ", " : "") + std::to_string(s[i]);
+  if (s.size() > 6) t += ", ... (" + std::to_string(s.size()) + " sizes)";
   return t + "]";
 }
 
