@@ -528,8 +528,12 @@ double RglBrdf::warp_pdf(const Vec3& wi, const Vec3& wo) const {
   const double lum_pdf = t.luminance.eval(s, params);
   // d(omega_m) = sin theta_m d theta d phi = 2 pi^2 u_x sin theta_m du (theta = u_x^2 pi/2, phi = (2 u_y - 1) pi);
   // d(omega_o) = 4 |wi . wm| d(omega_m) (the mirror's Jacobian, Walter et al. 2007, eq. 14).
+  // The exact Jacobian, not the loader's floor of 1e-6 on its first factor: that floor, reached within about 1e-5
+  // rad of the normal, took 0.5% of the density's mass away in rgl_test's table (u_m.x < 0.003 there holds that
+  // much), more for a sharper lobe, so the loader's pdf does not integrate to 1. At wm = n exactly (measure zero)
+  // the density is taken as 0.
   const double sin_m = std::sqrt(wm.x * wm.x + wm.y * wm.y);
-  const double jac = std::max(2.0 * pi * pi * u_wm.x * sin_m, 1e-6) * 4.0 * std::abs(dot(wi, wm));
+  const double jac = 2.0 * pi * pi * u_wm.x * sin_m * 4.0 * std::abs(dot(wi, wm));
   return jac > 0.0 ? vndf_pdf * lum_pdf / jac : 0.0;
 }
 

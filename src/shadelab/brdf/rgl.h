@@ -131,7 +131,7 @@ Result<RglTable> read_rgl(const std::filesystem::path& path);
 // lobe, else the file's own warps as the loader samples (luminance, then the vndf warp, then the mirror of wo about
 // the sampled microfacet normal), whose density per solid angle is
 //   p = luminance(s) vndf(u_m) / (2 pi^2 u_m.x sin theta_m) / (4 |wo . wm|)
-// with the loader's floor of 1e-6 on the first factor of the Jacobian (both in sample and in pdf, so they agree).
+// with the exact Jacobian (the loader floors its first factor at 1e-6, which loses mass near the normal: rgl.cpp).
 class RglBrdf final : public Brdf {
  public:
   static constexpr double cosine_share = 0.1;
