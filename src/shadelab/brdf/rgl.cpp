@@ -531,10 +531,11 @@ double RglBrdf::warp_pdf(const Vec3& wi, const Vec3& wo) const {
   // The exact Jacobian, not the loader's floor of 1e-6 on its first factor: that floor, reached within about 1e-5
   // rad of the normal, took 0.5% of the density's mass away in rgl_test's table (u_m.x < 0.003 there holds that
   // much), more for a sharper lobe, so the loader's pdf does not integrate to 1. At wm = n exactly (measure zero)
-  // the density is taken as 0.
+  // the density is taken as 0, and so where the quotient overflows (wm within about 1e-200 rad of n).
   const double sin_m = std::sqrt(wm.x * wm.x + wm.y * wm.y);
   const double jac = 2.0 * pi * pi * u_wm.x * sin_m * 4.0 * std::abs(dot(wi, wm));
-  return jac > 0.0 ? vndf_pdf * lum_pdf / jac : 0.0;
+  const double p = jac > 0.0 ? vndf_pdf * lum_pdf / jac : 0.0;
+  return std::isfinite(p) ? p : 0.0;
 }
 
 double RglBrdf::pdf(const Vec3& wi, const Vec3& wo) const {

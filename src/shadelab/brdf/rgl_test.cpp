@@ -358,6 +358,12 @@ TEST(Rgl, SampleAndPdfAgree) {
     }
   }
   const RglBrdf f = brdf_of(s);
+  // Pairs whose half vector is the normal or all but: a finite density (0 exactly at the normal).
+  for (const double t : {0.0, 1e-300, 1e-200, 1e-100, 1e-20, 1e-8}) {
+    const Vec3 wo = spherical(0.5, 0.4), wi = mirrored(wo, t, 1.0);
+    const double p = f.pdf(wi, wo);
+    EXPECT_TRUE(std::isfinite(p) && p >= 0.0) << t << " " << p;
+  }
   for (const double theta_o : {0.2, 0.7, 1.3}) {
     const Vec3 wo = spherical(theta_o, 0.4);
     // The warp part integrates to 1 over the sphere: in the warp's coordinates u of the half vector,
