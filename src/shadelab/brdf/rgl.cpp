@@ -146,6 +146,10 @@ Result<TensorFile> parse_tensor_file(std::vector<char> bytes, const std::string&
       }
       count *= f.shape[j];
     }
+    if (!empty && count > limit) {  // a rank-0 field is one value
+      return make_error(name + ": " + fname + ": one " + tensor_dtype_name(f.dtype) + " value (rank 0) does not fit in the file after offset " +
+                        std::to_string(f.offset));
+    }
     f.count = empty ? 0 : static_cast<std::size_t>(count);
     t.fields.push_back(std::move(f));
   }

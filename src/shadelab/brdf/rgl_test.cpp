@@ -173,6 +173,11 @@ TEST(RglTensor, MalformedContainersAreOneLineNamingTheFileAndWhat) {
   // Shapes that overflow 64 bits when multiplied: [2^32, 2^32, 16] of float32 in a tiny file.
   std::vector<TensorFieldData> over = {{"x", TensorDtype::f32, {std::uint64_t{1} << 32, std::uint64_t{1} << 32, 16}, {}}};
   expect_one_line(error_of(encode_tensor_file(over)), "does not fit in the file");
+  // A rank-0 field is one value, which must fit too (libFuzzer's finding: one at the end of the file).
+  auto scalar = encode_tensor_file({{"s", TensorDtype::f64, {}, {}}});
+  expect_one_line(error_of(scalar), "one float64 value (rank 0) does not fit in the file after offset 32");
+  scalar.resize(scalar.size() + 8);
+  EXPECT_EQ(parse_tensor_file(scalar, "s.bsdf")->fields.at(0).count, 1u);
 }
 
 TEST(RglTensor, MalformedBrdfFieldsAreOneLineNamingTheField) {
