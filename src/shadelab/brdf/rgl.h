@@ -67,7 +67,7 @@ struct TensorFile {
 
 // Parses a container; `name` names the file in errors. Refused, each in one line naming the file and the field:
 // a file shorter than the 18-byte header, a wrong magic, a version other than 1.0, a field header past the end,
-// a dtype 0 or above 11, a shape whose product overflows, data past the end of the file.
+// a dtype 0 or above 11, a shape whose product overflows, data past the end of the file (a rank-0 field is one value).
 Result<TensorFile> parse_tensor_file(std::vector<char> bytes, const std::string& name);
 
 // One field to write (the test's and the fuzz seeds' writer).
