@@ -1,6 +1,6 @@
 // shadelab fit MODEL DATA [--fix NAME=VALUE ...] [--free NAME ...] [--metric cosine-l2|cube-root|log] [--starts N]
 //   [--theta-d-stride S] [--phi-d-stride S] [--phi-h N] [--json]
-// Fits a model's free parameters to DATA (fit/fit.h): a MERL file (.binary), or model:NAME[,PARAM=VALUE...] to
+// Fits a model's free parameters to DATA (fit/fit.h): a MERL (.binary), RGL (.bsdf) or UTIA (.bin) file, or model:NAME[,PARAM=VALUE...] to
 // fit one model to another. Prints the parameters, the residual in the metric, the directional-albedo difference
 // (fit minus data, luminance) over theta and the wall time; --json prints them as an object.
 #include <fmt/core.h>
@@ -11,6 +11,8 @@
 #include "shadelab/analysis/albedo.h"
 #include "shadelab/brdf/measured.h"
 #include "shadelab/brdf/merl.h"
+#include "shadelab/brdf/rgl.h"
+#include "shadelab/brdf/utia.h"
 #include "shadelab/fit/fit.h"
 
 namespace shadelab::cli {
@@ -93,9 +95,18 @@ void run_fit(const FitCliOptions& o) {
     work_begins();
     data = fit_data_from_brdf(*data_brdf, grid);
     data_kind = "model";
+  } else if (const fs::path path(o.data); path.extension() == ".bsdf" || path.extension() == ".bin") {
+    // RGL tensor and UTIA files: their own evaluation (brdf/rgl.h, brdf/utia.h) on the grid.
+    auto b = path.extension() == ".bsdf" ? read_rgl_brdf(path) : read_utia_brdf(path);
+    if (!b) throw UsageError(b.error().message);
+    data_brdf = std::move(*b);
+    grid.n_phi_h = o.phi_h > 0 ? o.phi_h : (looks_isotropic(*data_brdf) ? 1 : 8);
+    work_begins();
+    data = fit_data_from_brdf(*data_brdf, grid);
+    data_kind = path.extension() == ".bsdf" ? "rgl" : "utia";
   } else {
-    const fs::path path(o.data);
-    require_extension("DATA", path, {".binary"}, "a MERL file (or model:NAME[,PARAM=VALUE...])");
+    require_extension("DATA", path, {".binary", ".bsdf", ".bin"},
+                      "a MERL (.binary), RGL (.bsdf) or UTIA (.bin) file, or model:NAME[,PARAM=VALUE...]");
     auto table = std::make_shared<const MerlTable>(unwrap(read_merl(path)));
     work_begins();
     data = fit_data_from_merl(*table, grid);
@@ -171,7 +182,7 @@ void add_fit_command(CLI::App& app, Command& command) {
   auto o = std::make_shared<FitCliOptions>();
   auto* sub = app.add_subcommand("fit", "fit a model's parameters to measured data or to another model");
   sub->add_option("model", o->model, "the model to fit (brdf list)")->required();
-  sub->add_option("data", o->data, "a MERL file (.binary), or model:NAME[,PARAM=VALUE...]")->required();
+  sub->add_option("data", o->data, "a MERL (.binary), RGL (.bsdf) or UTIA (.bin) file, or model:NAME[,PARAM=VALUE...]")->required();
   sub->add_option("--fix", o->fix, "hold a parameter at a value, NAME=VALUE (repeatable)");
   sub->add_option("--free", o->free, "fit exactly these parameters (repeatable; default: the model's free set)");
   sub->add_option("--metric", o->metric, "cosine-l2 (Ngan et al. 2005), cube-root (Fores et al. 2012) or log (Low et al. 2012)")
