@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -108,10 +110,16 @@ TEST(MeasuredRegistry, BadFilesAndParametersAreOneLineNamingTheFile) {
   const fs::path missing = dir / "missing.binary";
   EXPECT_EQ(error_of(file_param(missing)).rfind("brdf measured: parameter 'file': " + missing.string() + ": cannot read (", 0), 0u)
       << error_of(file_param(missing));
-  const fs::path small = testing::write_test_file("small.binary", std::vector<char>(100, '\0'));
+  std::vector<char> head(100, '\0');
+  const std::int32_t dims[3] = {90, 90, 180};
+  std::memcpy(head.data(), dims, sizeof dims);
+  const fs::path small = testing::write_test_file("small.binary", head);
   EXPECT_EQ(error_of(file_param(small)), "brdf measured: parameter 'file': " + small.string() +
                                              ": 100 bytes, expected 34992012 (a 12-byte header and three planes of 90 x "
                                              "90 x 180 float64): truncated");
+  const fs::path zeros = testing::write_test_file("zeros.binary", std::vector<char>(100, '\0'));
+  EXPECT_EQ(error_of(file_param(zeros)), "brdf measured: parameter 'file': " + zeros.string() +
+                                             ": header dims 0 x 0 x 0, expected MERL's 90 x 90 x 180 (theta_h, theta_d, phi_d)");
   EXPECT_EQ(error_of(file_param(dir)), "brdf measured: parameter 'file': " + dir.string() + ": not a regular file");
 }
 
