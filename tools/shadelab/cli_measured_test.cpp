@@ -78,10 +78,10 @@ std::string vec_text(const Vec3& v) {
 TEST(CliMeasured, BrdfEvalOfAMeasuredFileIsTheSourceModelAtBinCentres) {
   const std::string file = " --param file=" + measured_file().string();
   int compared = 0;
-  for (const auto& [i, j, k] : {std::array{3, 10, 20}, std::array{40, 30, 90}, std::array{70, 60, 150}, std::array{15, 5, 0}}) {
+  for (const auto& [i, j, k] : {std::array{3, 10, 20}, std::array{40, 30, 90}, std::array{70, 60, 150}, std::array{15, 5, 0},
+                                std::array{60, 20, 45}, std::array{30, 45, 100}}) {
     const auto [wi, wo] = half_diff_directions(merl_bin_centre(i, j, k));
-    ASSERT_GT(wi.z, 0.0);
-    ASSERT_GT(wo.z, 0.0);
+    if (!(wi.z > 0.01 && wo.z > 0.01)) continue;  // not measured: below the horizon
     const std::string dirs = " --wi " + vec_text(wi) + " --wo " + vec_text(wo) + " --json";
     const auto got = json_of(run("brdf eval measured" + file + dirs));
     const auto want = json_of(run("brdf eval ggx " + source_params + dirs));
@@ -90,7 +90,7 @@ TEST(CliMeasured, BrdfEvalOfAMeasuredFileIsTheSourceModelAtBinCentres) {
     }
     ++compared;
   }
-  EXPECT_EQ(compared, 4);
+  EXPECT_GE(compared, 4);
   // The analysis commands take it as any model: its directional albedo at 30 degrees is the source's within the
   // interpolation between bin centres (measured: 0.4% in green).
   const auto a = json_of(run("brdf albedo measured" + file + " --theta 30 --json"));
@@ -100,7 +100,11 @@ TEST(CliMeasured, BrdfEvalOfAMeasuredFileIsTheSourceModelAtBinCentres) {
 
 TEST(CliMeasured, BadMeasuredFilesAreOneLineNamingTheFileAndExitTwo) {
   const fs::path small = temp_dir() / "small.binary";
-  std::ofstream(small, std::ios::binary) << std::string(100, 'x');
+  std::string head(100, '\0');  // MERL's header {90, 90, 180} (little-endian int32), then too few values
+  head[0] = 90;
+  head[4] = 90;
+  head[8] = static_cast<char>(180);
+  std::ofstream(small, std::ios::binary) << head;
   const fs::path missing = temp_dir() / "missing.binary";
   const std::string dirs = " --wi 0,0,1 --wo 0,0.5,1";
   for (const auto& [args, want] : std::vector<std::pair<std::string, std::string>>{
@@ -133,7 +137,7 @@ TEST(CliMeasured, BrdfListShowsTheRequiredFileParameterAndShaderRefusesIt) {
   EXPECT_TRUE(found);
   const auto text = run("brdf list");
   EXPECT_NE(text.out.find("  file           file    default (required)"), std::string::npos) << text.out;
-  const auto r = run("shader measured --param file=" + (temp_dir() / "any.binary").string());
+  const auto r = run("shader measured --lang glsl --param file=" + (temp_dir() / "any.binary").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("model 'measured' has no shader: "), std::string::npos) << r.err;

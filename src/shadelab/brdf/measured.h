@@ -47,6 +47,7 @@ class MeasuredBrdf final : public Brdf {
   Rgb eval(const Vec3& wi, const Vec3& wo) const override;
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
+  bool is_tabulated() const override { return true; }
   const MerlTable& table() const { return *m_table; }
 
  private:
