@@ -54,6 +54,12 @@ TEST(Export, AModelWithoutAShaderIsRefusedByName) {
   EXPECT_EQ(ex.error().message,
             "model 'openpbr' has no shader: its dielectric albedo table (24 x 32 x 32) exceeds a GLSL ES uniform block "
             "and the kernel is not in the exporter's list (docs/models/openpbr.md, \"Shaders\")");
+  // measured: refused before it is built, so without its (required) file and whatever the file is
+  for (const ParamAssignments& p : {ParamAssignments{}, ParamAssignments{{"file", "/nonexistent/table.binary"}}}) {
+    auto m = export_model("measured", p, ExportOptions{});
+    ASSERT_FALSE(m.has_value());
+    EXPECT_EQ(m.error().message, "model 'measured' has no shader: it reads a measured table (35 MB) from a file at run time; no shader binds one");
+  }
 }
 
 TEST(Export, EveryModelHasABindingThatMatchesItsKernelStruct) {
