@@ -85,7 +85,7 @@ void bench_shader(benchmark::State& state, const std::string& model, Lang lang) 
 
 const bool registered = [] {
   for (const auto& m : brdf_models()) {
-    if (make_brdf(m.name).value()->is_stochastic()) continue;  // no shader
+    if (!m.no_shader.empty() || make_brdf(m.name).value()->is_stochastic()) continue;  // no shader: openpbr, measured; layered
     benchmark::RegisterBenchmark(("lavapipe/glsl/" + m.name).c_str(), bench_shader, m.name, Lang::glsl)
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond);

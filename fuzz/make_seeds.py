@@ -105,6 +105,10 @@ def scenes():
     scene("env_png.json", units="photometric", materials={"m": models["lambert"]}, shapes=[dict(shapes[0], material="m")],
           environment={"file": "env.png", "scale": 0.5})
     put("scene", "minimal.json", "{}")
+    # measured names a data file relative to the scene (a fixture file that is no MERL file: refused by its size
+    # before it is read, as any file a mutated scene names)
+    scene("measured.json", materials={"m": {"model": "measured", "params": {"file": "env.hdr"}}},
+          shapes=[dict(shapes[0], material="m")])
 
 
 # ---- OBJ ---------------------------------------------------------------------------------------------
@@ -261,6 +265,22 @@ def pngs():
         png_chunk(b"IEND", b""))
 
 
+# ---- MERL 100 (fuzz_merl.cpp) ------------------------------------------------------------------------
+def merl():
+    dims = struct.pack("<3i", 90, 90, 180)
+    put("merl", "empty.binary", b"")
+    put("merl", "header_only.binary", dims)
+    put("merl", "short_header.binary", dims[:7])
+    put("merl", "wrong_dims.binary", struct.pack("<3i", 90, 90, 360) + struct.pack("<4d", 1, 2, 3, 4))
+    put("merl", "truncated.binary", dims + struct.pack("<8d", 0.5, -1, 0, 1e300, 2, 3, 4, 5))
+    # "MERLFULL" + a 4-byte offset: values written into a full-size file at that byte offset of its planes
+    put("merl", "full_zero.binary", b"MERLFULL" + struct.pack("<I", 0))
+    put("merl", "full_values.binary", b"MERLFULL" + struct.pack("<I", 8 * 1458000) + struct.pack("<4d", 0.25, -1, 1e3, 7))
+    put("merl", "full_nan.binary", b"MERLFULL" + struct.pack("<I", 8 * (2 * 1458000 + 16200 + 181)) +
+        struct.pack("<2d", 1.0, float("nan")))
+    put("merl", "full_inf_straddling.binary", b"MERLFULL" + struct.pack("<I", 8 * 1000 + 3) + struct.pack("<d", float("inf")))
+
+
 # ---- CLI ---------------------------------------------------------------------------------------------
 def cli():
     lines = [
@@ -370,6 +390,8 @@ def dicts():
                 "ibl-error", "dfg", "ibl", "merge", "explore", "shader", "verify", "split-sum", "filtered", "lobes",
                 "dominant", "mirror", "ggx", "x.ktx2", "x.dds"]
     write("cli", ["\0" + w for w in sorted(options) + commands])
+    write("merl", ["MERLFULL", "Z\0\0\0", "\xb4\0\0\0", "\x00\x00\x00\x00\x00\x00\xf8\x7f",
+                   "\x00\x00\x00\x00\x00\x00\xf0\x7f", "\x00\x00\x00\x00\x00\x00\xf0\xbf"])
 
 
 if __name__ == "__main__":
@@ -380,3 +402,4 @@ if __name__ == "__main__":
     hdr()
     pngs()
     cli()
+    merl()

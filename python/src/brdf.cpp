@@ -30,6 +30,10 @@ py::object param_value(const ParamSpec& spec, const ParamValues& values) {
     case ParamKind::scalar: return py::float_(values.scalar(spec.name));
     case ParamKind::color: return rgb_tuple(values.color(spec.name));
     case ParamKind::choice: return py::str(values.choice(spec.name));
+    case ParamKind::file: {  // the path as given; None for a required one not set
+      const std::string& path = values.file(spec.name);
+      return path.empty() ? py::object(py::none()) : py::object(py::str(path));
+    }
     case ParamKind::lobes: {
       py::list groups;
       for (const auto& g : values.lobes(spec.name)) groups.append(number_list(g));
@@ -53,6 +57,8 @@ py::list models() {
       d["description"] = p.description;
       if (p.kind == ParamKind::choice) {
         d["choices"] = p.choices;
+      } else if (p.kind == ParamKind::file) {
+        d["required"] = is_required(p);  // a path: no range
       } else {
         d["min"] = p.min;
         d["max"] = p.max;

@@ -44,6 +44,16 @@ def cli():
 
 
 @pytest.fixture(scope="session")
+def measured_file(cli, tmp_path_factory):
+    """A MERL 100 file for the `measured` model (35 MB, about 1 s): `shadelab measure` of a coloured glossy ggx."""
+    path = tmp_path_factory.mktemp("measured") / "ggx.binary"
+    rc, _, err = cli("measure", "ggx", "--param", "roughness=0.4", "--param", "kd=0.3", "--param", "f0=0.9,0.6,0.3",
+                     "--out", path)
+    assert rc == 0, err
+    return path
+
+
+@pytest.fixture(scope="session")
 def scenes_dir():
     return Path(os.environ.get("SHADELAB_SCENES_DIR", Path(__file__).resolve().parents[2] / "scenes"))
 

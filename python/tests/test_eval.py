@@ -24,6 +24,14 @@ PARAMS = {
 }
 
 
+def params_for(model, measured_file):
+    """The keyword arguments a test builds `model` with: measured reads the session's MERL file (conftest.py)."""
+    params = dict(PARAMS.get(model, {}))
+    if model == "measured":
+        params["file"] = str(measured_file)
+    return params
+
+
 def cli_params(params):
     out = []
     for k, v in params.items():
@@ -38,8 +46,8 @@ def text(v):
 
 
 @pytest.mark.parametrize("model", [m["name"] for m in shadelab.models()])
-def test_vectorized_eval_equals_cli_per_pair(cli, model):
-    params = PARAMS.get(model, {})
+def test_vectorized_eval_equals_cli_per_pair(cli, model, measured_file):
+    params = params_for(model, measured_file)
     f = shadelab.Brdf(model, **params)
     wi = np.array([p[0] for p in PAIRS])
     wo = np.array([p[1] for p in PAIRS])
@@ -64,8 +72,8 @@ def test_lambert_against_its_closed_form():
 
 
 @pytest.mark.parametrize("model", [m["name"] for m in shadelab.models()])
-def test_sample_returns_pdf_and_weight_consistent_with_eval(model):
-    f = shadelab.Brdf(model, **PARAMS.get(model, {}))
+def test_sample_returns_pdf_and_weight_consistent_with_eval(model, measured_file):
+    f = shadelab.Brdf(model, **params_for(model, measured_file))
     rng = np.random.default_rng(7)
     n = 2000
     theta = rng.uniform(0, 1.4, n)
@@ -226,11 +234,11 @@ def unit_rows(rng, n):
 
 
 @pytest.mark.parametrize("model", [m["name"] for m in shadelab.models()])
-def test_vectorized_eval_equals_per_pair_calls_across_chunks(model):
+def test_vectorized_eval_equals_per_pair_calls_across_chunks(model, measured_file):
     # 700 pairs are three chunks of the binding's walk (256 each): the first and last are unit directions,
     # used in place by the library's eval_batch; the middle one holds a row to normalize, so the whole
     # chunk is copied and normalized first. Each row must equal eval of that pair alone.
-    f = shadelab.Brdf(model, **PARAMS.get(model, {}))
+    f = shadelab.Brdf(model, **params_for(model, measured_file))
     rng = np.random.default_rng(11)
     wi = unit_rows(rng, 700)
     wo = unit_rows(rng, 700)

@@ -19,12 +19,21 @@ def test_models_are_the_registry_the_cli_lists(cli):
             assert (p["kind"], p["default_text"], p["description"]) == (q["kind"], q["default"], q["description"])
             if p["kind"] == "choice":
                 assert p["choices"] == q["choices"] and p["default"] in p["choices"]
+            elif p["kind"] == "file":  # a path, no range; measured's is required (no default)
+                assert p["required"] == q["required"] and p["default"] == (None if p["required"] else p["default_text"])
             else:
                 assert (p["min"], p["max"]) == (q["min"], q["max"])
 
 
-def test_every_model_builds_with_its_defaults_and_reports_them():
+def test_every_model_builds_with_its_defaults_and_reports_them(cli):
     for m in shadelab.models():
+        if any(p.get("required") for p in m["params"]):
+            # measured: no default file; refused with the CLI's line
+            with pytest.raises(ValueError) as e:
+                shadelab.Brdf(m["name"])
+            assert str(e.value) == cli.error("brdf", "eval", m["name"], "--wi", "0,0,1", "--wo", "0,0,1")
+            assert "parameter 'file' is required" in str(e.value)
+            continue
         f = shadelab.Brdf(m["name"])
         assert f.name == m["name"]
         assert list(f.params) == [p["name"] for p in m["params"]]
@@ -74,6 +83,24 @@ def test_bad_models_and_parameters_raise_the_cli_line(cli, model, kwargs, params
     with pytest.raises(ValueError) as e:
         shadelab.Brdf(model, **kwargs)
     assert str(e.value) == expected
+
+
+def test_measured_reads_a_file_given_as_str_or_path(cli, measured_file, tmp_path):
+    kinds = {p["name"]: p["kind"] for m in shadelab.models() if m["name"] == "measured" for p in m["params"]}
+    assert kinds == {"file": "file"}
+    a = shadelab.Brdf("measured", file=str(measured_file))
+    b = shadelab.Brdf("measured", file=measured_file)  # a pathlib.Path
+    assert a.params["file"] == b.params["file"] == str(measured_file)
+    wi, wo = np.array([0.3, 0.1, 0.9]), np.array([-0.2, 0.0, 1.0])
+    assert a.eval(wi, wo).tolist() == b.eval(wi, wo).tolist()
+    j = cli.json("brdf", "eval", "measured", "--param", f"file={measured_file}", "--wi", "0.3,0.1,0.9", "--wo", "-0.2,0,1",
+                 "--json")
+    assert a.eval(wi, wo).tolist() == j["f"]
+    for bad in (tmp_path / "missing.binary", tmp_path):
+        with pytest.raises(ValueError) as e:
+            shadelab.Brdf("measured", file=bad)
+        assert str(e.value) == cli.error("brdf", "eval", "measured", "--param", f"file={bad}", "--wi", "0,0,1", "--wo", "0,0,1")
+        assert str(bad) in str(e.value)
 
 
 def test_wrong_types_never_crash():

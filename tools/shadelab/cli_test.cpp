@@ -32,13 +32,15 @@ TEST(Cli, BrdfListHasEveryModelWithParameters) {
   for (const auto& m : j["models"]) names.push_back(m["name"]);
   for (const char* want : {"lambert", "phong", "phong-modified", "blinn-phong", "blinn-phong-modified", "cook-torrance",
                            "minimalist-cook-torrance", "ward", "ward-anisotropic", "lafortune", "wrapped-diffuse",
-                           "ggx", "burley", "filament", "gltf", "principled-v1", "layered", "openpbr"}) {
+                           "ggx", "burley", "filament", "gltf", "principled-v1", "layered", "openpbr", "measured"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   }
   for (const auto& m : j["models"]) {
     for (const auto& p : m["params"]) {
       EXPECT_TRUE(p.contains("default")) << m["name"];
-      EXPECT_TRUE(p.contains("choices") || (p.contains("min") && p.contains("max"))) << m["name"];
+      // a file parameter (measured's) is a path: no range, whether it is required instead
+      EXPECT_TRUE(p.contains("choices") || (p.contains("min") && p.contains("max")) || (p["kind"] == "file" && p.contains("required")))
+          << m["name"];
     }
   }
   EXPECT_EQ(run("brdf list").code, 0);

@@ -37,6 +37,8 @@ void run_list(bool json) {
                            {"description", p.description}};
       if (p.kind == ParamKind::choice) {
         jp["choices"] = p.choices;
+      } else if (p.kind == ParamKind::file) {
+        jp["required"] = is_required(p);  // a path: no range
       } else {
         jp["min"] = p.min;
         jp["max"] = p.max;
@@ -47,11 +49,11 @@ void run_list(bool json) {
     if (!json) {
       fmt::print("{}\n  f_r = {}\n  source: {}\n", m.name, m.summary, m.source);
       for (const auto& p : m.params) {
-        const std::string range = p.kind == ParamKind::choice
-                                      ? fmt::format("{}", fmt::join(p.choices, " | "))
-                                      : fmt::format("[{}, {}]", p.min, p.max);
-        fmt::print("  {:<14} {:<7} default {:<14} {:<28} {}\n", p.name, param_kind_name(p.kind), p.default_value, range,
-                   p.description);
+        const std::string range = p.kind == ParamKind::choice ? fmt::format("{}", fmt::join(p.choices, " | "))
+                                  : p.kind == ParamKind::file ? std::string("a path")
+                                                              : fmt::format("[{}, {}]", p.min, p.max);
+        fmt::print("  {:<14} {:<7} default {:<14} {:<28} {}\n", p.name, param_kind_name(p.kind),
+                   is_required(p) ? std::string("(required)") : p.default_value, range, p.description);
       }
     }
   }

@@ -103,6 +103,7 @@ std::string describe_params(const ModelInfo& info, const ParamValues& values) {
         break;
       }
       case ParamKind::choice: os << values.choice(spec.name); break;
+      case ParamKind::file: os << values.file(spec.name); break;
       case ParamKind::lobes: {
         bool fg = true;
         for (const auto& g : values.lobes(spec.name)) {
@@ -256,6 +257,8 @@ Result<ShaderExport> export_model(std::string_view model, const ParamAssignments
   }
   auto values = parse_params(info->name, info->params, params);
   if (!values) return values.error();
+  // Before the model is built: measured refuses to be built without its file, and has no shader with one.
+  if (!info->no_shader.empty()) return make_error("model '" + info->name + "' has no shader: " + info->no_shader);
   auto brdf = info->create(*values);
   if (!brdf) return brdf.error();
   const std::optional<KernelBinding> binding = (*brdf)->kernel_binding();

@@ -78,7 +78,7 @@ const std::vector<std::pair<std::string, ParamAssignments>>& variants() {
   static const std::vector<std::pair<std::string, ParamAssignments>> v = [] {
     std::vector<std::pair<std::string, ParamAssignments>> out;
     for (const auto& m : brdf_models()) {
-      if (!make_brdf(m.name).value()->is_stochastic() && m.no_shader.empty()) out.push_back({m.name, {}});
+      if (m.no_shader.empty() && !make_brdf(m.name).value()->is_stochastic()) out.push_back({m.name, {}});
     }
     out.push_back({"phong", {{"normalization", "none"}, {"n", "8"}}});
     out.push_back({"phong-modified", {{"kd", "0"}, {"n", "200"}}});

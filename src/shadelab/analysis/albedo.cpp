@@ -113,6 +113,8 @@ AlbedoResult directional_albedo(const Brdf& f, const Vec3& wo, const AlbedoOptio
   }
   result.axis = options.axis ? *options.axis : lobe_peak(f, wo, LobeQuantity::reflected);
   if (!(result.axis.z > 0.0)) result.axis = normal;  // the peak search found nothing above the horizon
+  QuadratureOptions quadrature = options.quadrature;
+  if (f.is_tabulated()) quadrature.rel_tol = std::max(quadrature.rel_tol, tabulated_rel_tol);
   const VectorQuadratureResult q = integrate_directions(
       [&](const Vec3& wi, std::span<double> out) {
         const Rgb v = wi.z > 0.0 ? f.eval(wi, wo) * wi.z : Rgb{};  // f(wi, wo) cos(theta_i)
@@ -120,7 +122,7 @@ AlbedoResult directional_albedo(const Brdf& f, const Vec3& wo, const AlbedoOptio
         out[1] = v.g;
         out[2] = v.b;
       },
-      3, result.axis, SphereRegion::upper, options.quadrature);
+      3, result.axis, SphereRegion::upper, quadrature);
   result.albedo = {q.value[0], q.value[1], q.value[2]};
   result.error = {q.error[0], q.error[1], q.error[2]};
   result.evaluations = q.evaluations;

@@ -29,6 +29,10 @@
 // - variance: the largest variance of the weight f cos / pdf over the check angles (consistency_samples
 //   samples each), reported; the detail lists it per angle and, for a model with a `sampling` parameter, for
 //   every sampler it offers.
+// A tabulated model (Brdf::is_tabulated: measured) is checked with looser numerics where its table's kinks and
+// jumps make the defaults endless: chi-square cells at 3e-3, the energy maximum to 0.5 degrees, reciprocity to
+// 1e-9, the albedo to tabulated_rel_tol, the pdf integral by a midpoint sum (check.cpp, for_model); about 80 s for
+// a measured ggx table (the grazing albedos most of it).
 // All randomness uses fixed seeds. About one to a few seconds per model in a Release build.
 #pragma once
 

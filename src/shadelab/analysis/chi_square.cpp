@@ -346,7 +346,30 @@ WeightMean weight_mean(const Brdf& f, const Vec3& wo, std::uint64_t count, std::
   return m;
 }
 
+namespace {
+
+// The midpoint sum of f.pdf over the sphere on n x n cells in (phi - phi_o, z = cos theta), dw = dphi dz.
+double pdf_midpoint_sum(const Brdf& f, const Vec3& wo, int n) {
+  const double phi_o = std::atan2(wo.y, wo.x);
+  double sum = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const double z = -1.0 + 2.0 * (j + 0.5) / n;
+    const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
+    for (int i = 0; i < n; ++i) {
+      const double phi = phi_o + 2.0 * pi * (i + 0.5) / n;
+      sum += f.pdf({s * std::cos(phi), s * std::sin(phi), z}, wo);
+    }
+  }
+  return sum * (2.0 / n) * (2.0 * pi / n);
+}
+
+}  // namespace
+
 QuadratureResult pdf_integral(const Brdf& f, const Vec3& wo, const QuadratureOptions& options) {
+  if (f.is_tabulated()) {
+    const double fine = pdf_midpoint_sum(f, wo, 1024), coarse = pdf_midpoint_sum(f, wo, 512);
+    return {fine, std::abs(fine - coarse), 1024 * 1024 + 512 * 512, 0, std::isfinite(fine)};
+  }
   // The upper half about the pdf's peak there. The lower half about -wo, where every sampler that reflects
   // wo about a sampled half vector h has an integrable singularity (the Jacobian 1 / (4 |wo.h|) with wo.h -> 0),
   // which polar coordinates about it smooth out; unless a genuine lobe peaks below the horizon.

@@ -113,6 +113,11 @@ class Brdf {
   // function of the pair, but noisy. Such a model has no shader kernel and is reciprocal in expectation only;
   // the analysis measures it by sampling where quadrature would chase the noise (analysis/check.h).
   virtual bool is_stochastic() const { return false; }
+  // True when eval interpolates a measured table (brdf/measured.h): continuous, with kinks along every bin
+  // boundary, and within the table's interpolation error (about 1e-3) of what was measured. Adaptive quadrature
+  // of such a function to 1e-10 subdivides along every kink (100 s for one albedo); the analysis integrates it to
+  // tabulated_rel_tol (analysis/albedo.h).
+  virtual bool is_tabulated() const { return false; }
   // For a stochastic model, the standard error of eval(wi, wo)'s own estimate (from the same random numbers:
   // eval's value is the mean it belongs to); nullopt for an exact model, or when one sample gives no spread.
   virtual std::optional<Rgb> eval_standard_error(const Vec3& /*wi*/, const Vec3& /*wo*/) const { return std::nullopt; }

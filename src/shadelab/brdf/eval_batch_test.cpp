@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "shadelab/brdf/registry.h"
+#include "shadelab/brdf/test_measured_file.h"
 #include "shadelab/brdf/test_util.h"
 #include "shadelab/sampling/rng.h"
 #include "shadelab/sampling/warp.h"
@@ -108,7 +109,7 @@ void expect_batch_equals_per_pair(const std::string& label, const Brdf& f) {
 TEST(EvalBatch, EqualsPerPairEvalBitForBitForEveryRegisteredModel) {
   std::size_t models = 0;
   for (const ModelInfo& m : brdf_models()) {
-    std::vector<ParamAssignments> sets = {{}};
+    std::vector<ParamAssignments> sets = {testing::registry_params(m)};  // measured: this binary's test file
     if (auto it = extra_params().find(m.name); it != extra_params().end()) {
       sets.insert(sets.end(), it->second.begin(), it->second.end());
     }

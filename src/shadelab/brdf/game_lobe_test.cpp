@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "shadelab/brdf/registry.h"
+#include "shadelab/brdf/test_measured_file.h"
 #include "shadelab/core/constants.h"
 #include "shadelab/core/frame.h"
 #include "shadelab/envmap/specular/prefilter.h"
@@ -220,7 +221,7 @@ TEST(GameLobe, EachModelAnswersItsChainExponentGlossKindWrapAndSplitSum) {
 TEST(GameLobe, TheSplitSumSweepIsDeclaredByTheModelsThatTakeTheSplitSum) {
   int declared = 0;
   for (const ModelInfo& info : brdf_models()) {
-    auto f = make_brdf(info.name);
+    auto f = make_brdf(info.name, testing::registry_params(info));  // measured: this binary's test file
     ASSERT_TRUE(f.has_value()) << info.name;
     EXPECT_EQ(info.split_sum_sweep.has_value(), (*f)->split_sum_inputs().has_value()) << info.name;
     if (!info.split_sum_sweep) continue;

@@ -1,9 +1,16 @@
 #include "shadelab/brdf/measured.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <deque>
+#include <map>
+#include <mutex>
+#include <string>
+#include <tuple>
 
 #include "shadelab/color/rgb.h"
+#include "shadelab/brdf/registry.h"
 #include "shadelab/core/constants.h"
 #include "shadelab/sampling/warp.h"
 
@@ -43,7 +50,8 @@ Axis periodic_axis(double x, int n) {
 }  // namespace
 
 MeasuredBrdf::MeasuredBrdf(std::shared_ptr<const MerlTable> table) : m_table(std::move(table)) {
-  m_views.reserve(view_bins);
+  std::vector<Distribution2D> views;
+  views.reserve(view_bins);
   std::vector<double> mass(static_cast<std::size_t>(phi_cells) * z_cells);
   for (int v = 0; v < view_bins; ++v) {
     const double theta_o = (v + 0.5) / view_bins * 0.5 * pi;
@@ -57,8 +65,9 @@ MeasuredBrdf::MeasuredBrdf(std::shared_ptr<const MerlTable> table) : m_table(std
       }
     }
     // Finite and non-negative by construction; an all-zero view (a black table) is uniform.
-    m_views.push_back(std::move(*Distribution2D::create(mass, phi_cells, z_cells)));
+    views.push_back(std::move(*Distribution2D::create(mass, phi_cells, z_cells)));
   }
+  m_views = std::make_shared<const std::vector<Distribution2D>>(std::move(views));
 }
 
 int MeasuredBrdf::view_bin(const Vec3& wo) const {
@@ -109,7 +118,7 @@ double MeasuredBrdf::pdf(const Vec3& wi, const Vec3& wo) const {
   const double x = std::min(rel / two_pi, std::nextafter(1.0, 0.0));
   const double y = std::min(wi.z, std::nextafter(1.0, 0.0));
   // dw = d(cos theta) d(phi) = 2 pi dx dy.
-  const double table = m_views[static_cast<std::size_t>(view_bin(wo))].pdf({x, y}) / two_pi;
+  const double table = (*m_views)[static_cast<std::size_t>(view_bin(wo))].pdf({x, y}) / two_pi;
   return cosine_share * wi.z * inv_pi + (1.0 - cosine_share) * table;
 }
 
@@ -119,12 +128,83 @@ BrdfSample MeasuredBrdf::sample(const Vec3& wo, Vec2 u, double u_lobe) const {
   if (u_lobe < cosine_share) {
     s.wi = sample_cosine_hemisphere(u);
   } else {
-    const auto t = m_views[static_cast<std::size_t>(view_bin(wo))].sample(u);
+    const auto t = (*m_views)[static_cast<std::size_t>(view_bin(wo))].sample(u);
     s.wi = direction(t.p.y, std::atan2(wo.y, wo.x) + two_pi * t.p.x);
   }
   s.pdf = pdf(s.wi, wo);
   if (s.pdf > 0.0) s.weight = eval(s.wi, wo) * (s.wi.z / s.pdf);
   return s;
+}
+
+namespace {
+
+struct CacheKey {
+  std::string path;  // canonical
+  std::filesystem::file_time_type::rep mtime = 0;
+  std::uintmax_t size = 0;
+  bool operator<(const CacheKey& o) const { return std::tie(path, mtime, size) < std::tie(o.path, o.mtime, o.size); }
+};
+
+struct Cache {
+  std::mutex mutex;
+  std::map<CacheKey, std::weak_ptr<const MeasuredBrdf>> entries;
+  std::deque<std::shared_ptr<const MeasuredBrdf>> recent;  // the last four loaded stay alive
+  std::atomic<std::size_t> reads{0};
+};
+
+Cache& cache() {
+  static Cache c;
+  return c;
+}
+
+}  // namespace
+
+std::size_t measured_file_reads() { return cache().reads.load(); }
+
+Result<BrdfPtr> load_measured_brdf(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::filesystem::path canonical = std::filesystem::canonical(path, ec);
+  if (ec) return make_error(path.string() + ": cannot read (" + ec.message() + ")");
+  if (!std::filesystem::is_regular_file(canonical, ec)) return make_error(path.string() + ": not a regular file");
+  CacheKey key;
+  key.path = canonical.string();
+  key.mtime = std::filesystem::last_write_time(canonical, ec).time_since_epoch().count();
+  if (!ec) key.size = std::filesystem::file_size(canonical, ec);
+  if (ec) return make_error(path.string() + ": cannot read (" + ec.message() + ")");
+  Cache& c = cache();
+  const std::lock_guard<std::mutex> lock(c.mutex);
+  if (const auto it = c.entries.find(key); it != c.entries.end()) {
+    if (const auto hit = it->second.lock()) return BrdfPtr(std::make_unique<MeasuredBrdf>(*hit));
+  }
+  // The one place a format is chosen: MERL 100 is the only measured format read today.
+  auto table = read_merl(path);
+  if (!table) return table.error();
+  ++c.reads;
+  auto made = std::make_shared<const MeasuredBrdf>(std::make_shared<const MerlTable>(std::move(*table)));
+  for (auto it = c.entries.begin(); it != c.entries.end();) it = it->second.expired() ? c.entries.erase(it) : std::next(it);
+  c.entries[key] = made;
+  c.recent.push_back(made);
+  if (c.recent.size() > 4) c.recent.pop_front();
+  return BrdfPtr(std::make_unique<MeasuredBrdf>(*made));
+}
+
+ModelInfo measured_model() {
+  ModelInfo info;
+  info.name = "measured";
+  info.summary = "the table's f_r, trilinear between bin centres in (theta_h, theta_d, phi_d) (brdf/measured.h)";
+  info.source = "MERL 100 files: Matusik, Pfister, Brand & McMillan 2003, ACM TOG 22(3); binning: Rusinkiewicz 1998";
+  info.no_shader = "it reads a measured table (35 MB) from a file at run time; no shader binds one";
+  info.params = {
+      {"file", ParamKind::file, "", 0.0, 0.0, {},
+       "a MERL 100 .binary file (34,992,012 bytes); in a scene, relative to the scene file's folder", 0, {}},
+  };
+  info.create = [](const ParamValues& v) -> Result<BrdfPtr> {
+    if (v.file("file").empty()) return make_error("brdf measured: parameter 'file' is required");
+    auto f = load_measured_brdf(v.file("file"));
+    if (!f) return make_error("brdf measured: parameter 'file': " + f.error().message);
+    return f;
+  };
+  return info;
 }
 
 }  // namespace shadelab

@@ -16,8 +16,14 @@
 // (phi_i - phi_o, cos theta_i) on 128 x 64 cells (equal solid angle), each cell's mass proportional to the
 // luminance of f cos theta_i at its centre with wo at the bin's centre. The cosine share keeps the density
 // positive wherever f can be.
+//
+// The registry's model `measured` (parameter `file`) builds it through load_measured_brdf, the one entry for
+// measured data files, which keeps what it read by canonical path, modification time and size: a second BRDF of
+// the same unchanged file shares the table and the samplers' tables of the first (no second read of 35 MB, no
+// second sampler construction).
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <vector>
 
@@ -35,16 +41,28 @@ class MeasuredBrdf final : public Brdf {
   static constexpr double cosine_share = 0.1;
 
   explicit MeasuredBrdf(std::shared_ptr<const MerlTable> table);
+  // Copies share the table and the samplers' tables (cheap).
+  MeasuredBrdf(const MeasuredBrdf&) = default;
 
   Rgb eval(const Vec3& wi, const Vec3& wo) const override;
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
+  bool is_tabulated() const override { return true; }
   const MerlTable& table() const { return *m_table; }
 
  private:
   int view_bin(const Vec3& wo) const;
   std::shared_ptr<const MerlTable> m_table;
-  std::vector<Distribution2D> m_views;  // one per view bin, over (x = (phi_i - phi_o) / 2pi, y = cos theta_i)
+  // One per view bin, over (x = (phi_i - phi_o) / 2pi, y = cos theta_i); shared by copies.
+  std::shared_ptr<const std::vector<Distribution2D>> m_views;
 };
+
+// Reads a measured BRDF file and builds its BRDF: today every file is read as MERL 100 (brdf/merl.h: its size
+// and header are checked first); other measured formats are dispatched from here. Errors are one line naming the
+// file. Loads are cached by (canonical path, modification time, size): while a BRDF of the file lives, or for the
+// last four files loaded, another load of the unchanged file copies it without reading. Thread-safe.
+Result<BrdfPtr> load_measured_brdf(const std::filesystem::path& path);
+// How many times load_measured_brdf has read and parsed a file (not counting cache hits): for tests.
+std::size_t measured_file_reads();
 
 }  // namespace shadelab

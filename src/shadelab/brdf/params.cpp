@@ -89,6 +89,10 @@ Rgb ParamValues::color(std::string_view name) const {
 
 const std::string& ParamValues::choice(std::string_view name) const { return get(name).word; }
 
+const std::string& ParamValues::file(std::string_view name) const { return get(name).word; }
+
+bool is_required(const ParamSpec& spec) { return spec.kind == ParamKind::file && spec.default_value.empty(); }
+
 const std::vector<std::vector<double>>& ParamValues::lobes(std::string_view name) const { return get(name).groups; }
 
 bool ParamValues::is_set(std::string_view name) const { return get(name).explicit_set; }
@@ -148,6 +152,13 @@ Result<ParamValues> parse_params(std::string_view model, const std::vector<Param
           if (!r) return r.error();
         }
         value.numbers = *nums;
+        break;
+      }
+      case ParamKind::file: {
+        // Any path; whether it names a readable file is the model's loader's to say. An explicit empty one is refused
+        // here (a default may be empty: the parameter is then required, checked by make_brdf).
+        if (is_explicit && text.empty()) return make_error(where + " is an empty path");
+        value.word = text;
         break;
       }
       case ParamKind::lobes: {

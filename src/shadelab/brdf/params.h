@@ -20,6 +20,7 @@ enum class ParamKind {
   color,   // a scalar or r,g,b
   choice,  // one of a fixed set of words
   lobes,   // groups of numbers separated by ';', each group of group_size numbers separated by ','
+  file,    // a path to a data file (a measured table); an empty default means the parameter is required
 };
 
 // The kind's name as `brdf list --json` and shadelab.models() print it.
@@ -29,9 +30,15 @@ inline const char* param_kind_name(ParamKind k) {
     case ParamKind::color: return "color";
     case ParamKind::choice: return "choice";
     case ParamKind::lobes: return "lobes";
+    case ParamKind::file: return "file";
   }
   return "?";
 }
+
+struct ParamSpec;
+// A file parameter with no default: make_brdf refuses the model without it ("brdf measured: parameter 'file' is
+// required"), and the loops over every model give it a file or skip the model.
+bool is_required(const ParamSpec& spec);
 
 // The enumerator a choice parameter's word names; the table's first entry for a word not in it (parse_params
 // has already refused words outside the declared choices, so that only happens for a model's own default).
@@ -62,6 +69,8 @@ class ParamValues {
   Rgb color(std::string_view name) const;
   const std::string& choice(std::string_view name) const;
   const std::vector<std::vector<double>>& lobes(std::string_view name) const;
+  // A file parameter's path as given (empty when a required one was not set).
+  const std::string& file(std::string_view name) const;
   // True when the user set this parameter explicitly (not from its default).
   bool is_set(std::string_view name) const;
   // Overrides a scalar or colour parameter with already-validated numbers (textures at render time); the

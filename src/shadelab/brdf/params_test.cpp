@@ -89,6 +89,12 @@ TEST(Params, SplitAssignment) {
 
 TEST(Params, EveryRegisteredDefaultIsValid) {
   for (const auto& m : brdf_models()) {
+    if (needs_input_file(m)) {  // measured: no default file; refused by name (Registry.* in measured_registry_test)
+      auto r = make_brdf(m.name);
+      ASSERT_FALSE(r.has_value()) << m.name;
+      EXPECT_EQ(r.error().message.rfind("brdf " + m.name + ": parameter 'file' is required", 0), 0u) << r.error().message;
+      continue;
+    }
     auto r = make_brdf(m.name);
     EXPECT_TRUE(r.has_value()) << m.name << ": " << (r ? "" : r.error().message);
   }

@@ -24,6 +24,7 @@ std::span<const ModelInfo> brdf_models() {
       layered_model(),
       principled_v1_model(),
       openpbr_model(),
+      measured_model(),
   };
   return models;
 }
@@ -33,6 +34,13 @@ const ModelInfo* find_brdf_model(std::string_view name) {
     if (m.name == name) return &m;
   }
   return nullptr;
+}
+
+bool needs_input_file(const ModelInfo& info) {
+  for (const auto& spec : info.params) {
+    if (is_required(spec)) return true;
+  }
+  return false;
 }
 
 std::string split_sum_model_names() {
@@ -52,6 +60,11 @@ Result<BrdfPtr> make_brdf(std::string_view name, const ParamAssignments& params)
   }
   auto values = parse_params(info->name, info->params, params);
   if (!values) return values.error();
+  for (const auto& spec : info->params) {
+    if (is_required(spec) && !values->is_set(spec.name)) {
+      return make_error("brdf " + info->name + ": parameter '" + spec.name + "' is required (" + spec.description + ")");
+    }
+  }
   return info->create(*values);
 }
 

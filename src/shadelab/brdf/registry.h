@@ -42,6 +42,9 @@ struct ModelInfo {
 // All models, in a fixed order.
 std::span<const ModelInfo> brdf_models();
 const ModelInfo* find_brdf_model(std::string_view name);
+// True for a model that cannot be built from its defaults: one of its parameters names a data file and has no
+// default (measured). The loops over every model (tests, benchmarks, the explorer) give it a file or skip it.
+bool needs_input_file(const ModelInfo& info);
 // The names of the models with a split_sum_sweep, comma-separated in registry order ("ggx, filament"): for
 // messages that list them.
 std::string split_sum_model_names();
@@ -74,5 +77,6 @@ ModelInfo gltf_model();
 ModelInfo layered_model();
 ModelInfo principled_v1_model();
 ModelInfo openpbr_model();
+ModelInfo measured_model();
 
 }  // namespace shadelab

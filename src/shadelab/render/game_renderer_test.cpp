@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "shadelab/brdf/test_measured_file.h"
 #include "shadelab/envmap/base/latlong.h"
 #include "shadelab/envmap/diffuse/sh.h"
 #include "shadelab/image/image_io.h"
@@ -19,9 +20,11 @@ using testing::floor_quad;
 using testing::furnace_sphere;
 
 // A plane of the given model under three punctual lights given in game units (colour c: E = pi c).
+// `measured` reads this binary's test file (brdf/test_measured_file.h).
 Scene punctual_scene(const std::string& model) {
   Scene s;
-  s.quads.push_back(floor_quad(20.0, 0.0, add_material(s, model, {})));
+  const ModelInfo* info = find_brdf_model(model);
+  s.quads.push_back(floor_quad(20.0, 0.0, add_material(s, model, info ? testing::registry_params(*info) : ParamAssignments{})));
   s.lights.push_back(DirectionalLight{normalize(Vec3{0.3, 1.0, -0.2}), irradiance_from_game({1.0, 0.9, 0.8})});
   s.lights.push_back(PointLight{{-1.0, 1.5, 0.5}, intensity_from_game(Rgb::gray(2.0))});
   s.lights.push_back(SpotLight{{0.5, 2.0, 0.0}, {0.0, -1.0, 0.0}, intensity_from_game(Rgb::gray(3.0)), 0.9, 0.7});

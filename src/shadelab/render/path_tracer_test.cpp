@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "shadelab/brdf/test_measured_file.h"
 #include "shadelab/light/units.h"
 #include "shadelab/render/test_scenes.h"
 
@@ -132,8 +133,9 @@ TEST(PathTracer, MisIsUnbiasedForEveryModel) {
     // The layered ground truth's default coat (alpha 0.01) is a near-mirror lobe that light sampling alone
     // cannot find in 40000 samples (its estimate misses the sky's reflection, about 3%, with an error estimate
     // that does not show it): a rougher coat, and one walk per eval.
-    const ParamAssignments params =
-        info.name == "layered" ? ParamAssignments{{"coat_roughness", "0.5"}, {"walk_samples", "1"}} : ParamAssignments{};
+    // measured reads this binary's test file (brdf/test_measured_file.h).
+    const ParamAssignments params = info.name == "layered" ? ParamAssignments{{"coat_roughness", "0.5"}, {"walk_samples", "1"}}
+                                                           : testing::registry_params(info);
     s.quads.push_back(floor_quad(50.0, 0.0, add_material(s, info.name, params)));
     s.lights.push_back(SphereLight{{1.0, 2.0, 0.5}, 0.7, Rgb::gray(3.0)});
     s.environment.kind = Environment::Kind::uniform;

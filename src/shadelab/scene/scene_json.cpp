@@ -590,6 +590,10 @@ class Parser {
         for (const auto& [key, value] : params->value().items()) {
           const Node p(value, params->child_pointer(key));
           std::pair<std::string, std::string> assignment{key, param_text(p)};
+          // A file parameter (measured's table) names a file relative to the scene's folder, as meshes and images.
+          const auto spec = std::find_if(info->params.begin(), info->params.end(),
+                                         [&](const ParamSpec& ps) { return ps.name == key; });
+          if (spec != info->params.end() && spec->kind == ParamKind::file) assignment.second = file(p).string();
           // Validate each parameter alone first, so the error points at it.
           auto one = parse_params(info->name, info->params, {assignment});
           if (!one) p.fail(one.error().message);

@@ -469,7 +469,7 @@ TEST(SceneJsonErrors, ShapesAndMaterials) {
   EXPECT_EQ(error_of(R"({"materials": {"m": {"model": "phongg"}}})"),
             "scene.json: /materials/m/model: unknown BRDF model 'phongg' (models: lambert, phong, phong-modified, "
             "blinn-phong, blinn-phong-modified, cook-torrance, minimalist-cook-torrance, ward, ward-anisotropic, "
-            "lafortune, wrapped-diffuse, ggx, burley, filament, gltf, layered, principled-v1, openpbr)");
+            "lafortune, wrapped-diffuse, ggx, burley, filament, gltf, layered, principled-v1, openpbr, measured)");
   EXPECT_EQ(error_of(R"({"materials": {"m": {"model": "cook-torrance", "params": {"m": 0.2, "n": 100}}}})"),
             "scene.json: /materials/m/params: brdf cook-torrance: give parameter 'm' or 'n', not both (n = 2/m^2 - 2)");
   EXPECT_EQ(error_of(R"({"materials": {"m": {"model": "phong", "params": {"kd": true}}}})"),

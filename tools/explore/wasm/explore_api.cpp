@@ -51,6 +51,7 @@ std::string_view kind_name(ParamKind k) {
     case ParamKind::color: return "color";
     case ParamKind::choice: return "choice";
     case ParamKind::lobes: return "lobes";
+    case ParamKind::file: return "file";
   }
   return "?";
 }
@@ -113,12 +114,16 @@ json models() {
   for (const auto& m : brdf_models()) {
     // The explorer draws every model with its exported shader; the layered ground truth (a Monte Carlo
     // estimate, Brdf::is_stochastic) has none, and reaches the explorer with the layered front-end work.
-    if (make_brdf(m.name).value()->is_stochastic() || !m.no_shader.empty()) continue;  // and openpbr: no shader (ModelInfo::no_shader)
+    // openpbr and measured have none either (ModelInfo::no_shader; measured also reads a file, which the page
+    // cannot): tested before make_brdf, which measured refuses without its file.
+    if (!m.no_shader.empty() || make_brdf(m.name).value()->is_stochastic()) continue;
     json params = json::array();
     for (const auto& p : m.params) {
       json jp = {{"name", p.name}, {"kind", kind_name(p.kind)}, {"default", p.default_value}, {"description", p.description}};
       if (p.kind == ParamKind::choice) {
         jp["choices"] = p.choices;
+      } else if (p.kind == ParamKind::file) {
+        jp["required"] = is_required(p);  // not reached today: measured, the one file model, is skipped above
       } else {
         jp["min"] = p.min;
         jp["max"] = p.max;
