@@ -1,5 +1,8 @@
 #include "shadelab/brdf/measured.h"
 
+#include "shadelab/brdf/rgl.h"
+#include "shadelab/brdf/utia.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -162,6 +165,12 @@ Cache& cache() {
 std::size_t measured_file_reads() { return cache().reads.load(); }
 
 Result<BrdfPtr> load_measured_brdf(const std::filesystem::path& path) {
+  // The one place a format is chosen, by the file's extension: RGL tensor files (.bsdf) and UTIA files (.bin) are
+  // read by their readers (a few MB: read for each material that names them, not cached); anything else is read
+  // as MERL 100 (.binary, 35 MB: cached below).
+  const std::string ext = path.extension().string();
+  if (ext == ".bsdf") return read_rgl_brdf(path);
+  if (ext == ".bin") return read_utia_brdf(path);
   std::error_code ec;
   const std::filesystem::path canonical = std::filesystem::canonical(path, ec);
   if (ec) return make_error(path.string() + ": cannot read (" + ec.message() + ")");
@@ -176,7 +185,6 @@ Result<BrdfPtr> load_measured_brdf(const std::filesystem::path& path) {
   if (const auto it = c.entries.find(key); it != c.entries.end()) {
     if (const auto hit = it->second.lock()) return BrdfPtr(std::make_unique<MeasuredBrdf>(*hit));
   }
-  // The one place a format is chosen: MERL 100 is the only measured format read today.
   auto table = read_merl(path);
   if (!table) return table.error();
   ++c.reads;
@@ -191,12 +199,12 @@ Result<BrdfPtr> load_measured_brdf(const std::filesystem::path& path) {
 ModelInfo measured_model() {
   ModelInfo info;
   info.name = "measured";
-  info.summary = "the table's f_r, trilinear between bin centres in (theta_h, theta_d, phi_d) (brdf/measured.h)";
-  info.source = "MERL 100 files: Matusik, Pfister, Brand & McMillan 2003, ACM TOG 22(3); binning: Rusinkiewicz 1998";
+  info.summary = "the table's f_r: MERL trilinear between bin centres in (theta_h, theta_d, phi_d); RGL and UTIA by their readers (brdf/measured.h)";
+  info.source = "MERL 100 (Matusik et al. 2003; binning: Rusinkiewicz 1998), RGL (Dupuy & Jakob 2018), UTIA (Filip & Vavra 2014) files";
   info.no_shader = "it reads a measured table (35 MB) from a file at run time; no shader binds one";
   info.params = {
       {"file", ParamKind::file, "", 0.0, 0.0, {},
-       "a MERL 100 .binary file (34,992,012 bytes); in a scene, relative to the scene file's folder", 0, {}},
+       "a MERL 100 .binary (34,992,012 bytes), RGL .bsdf (RGB) or UTIA .bin file; in a scene, relative to the scene file's folder", 0, {}},
   };
   info.create = [](const ParamValues& v) -> Result<BrdfPtr> {
     if (v.file("file").empty()) return make_error("brdf measured: parameter 'file' is required");

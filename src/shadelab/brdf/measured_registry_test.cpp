@@ -17,6 +17,9 @@
 #include "shadelab/brdf/merl.h"
 #include "shadelab/brdf/registry.h"
 #include "shadelab/brdf/test_measured_file.h"
+#include "shadelab/brdf/utia.h"
+
+#include <fstream>
 
 namespace shadelab {
 namespace {
@@ -121,6 +124,46 @@ TEST(MeasuredRegistry, BadFilesAndParametersAreOneLineNamingTheFile) {
   EXPECT_EQ(error_of(file_param(zeros)), "brdf measured: parameter 'file': " + zeros.string() +
                                              ": header dims 0 x 0 x 0, expected MERL's 90 x 90 x 180 (theta_h, theta_d, phi_d)");
   EXPECT_EQ(error_of(file_param(dir)), "brdf measured: parameter 'file': " + dir.string() + ": not a regular file");
+}
+
+}  // namespace
+}  // namespace shadelab
+
+namespace shadelab {
+namespace {
+
+TEST(MeasuredRegistry, UtiaAndRglFilesAreReadByTheirReaders) {
+  // The extension chooses the reader: a UTIA file of ward through the registry equals read_utia_brdf's BRDF.
+  auto ward = make_brdf("ward", {{"kd", "0.3"}, {"ks", "0.2"}, {"alpha", "0.4"}});
+  ASSERT_TRUE(ward);
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "shadelab_registry_ward.bin";
+  const std::vector<char> bytes = encode_utia(measure_utia(**ward));
+  {
+    std::ofstream out(file, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  auto via_registry = make_brdf("measured", {{"file", file.string()}});
+  ASSERT_TRUE(via_registry) << via_registry.error().message;
+  auto direct = read_utia_brdf(file);
+  ASSERT_TRUE(direct);
+  EXPECT_TRUE((*via_registry)->is_tabulated());
+  for (const auto& [wi, wo] : {std::pair{Vec3{0.3, 0.1, 0.9}, Vec3{-0.4, 0.2, 0.8}}, std::pair{Vec3{0.0, 0.6, 0.8}, Vec3{0.5, -0.5, 0.7}}}) {
+    const Rgb a = (*via_registry)->eval(normalize(wi), normalize(wo));
+    const Rgb b = (*direct)->eval(normalize(wi), normalize(wo));
+    EXPECT_EQ(a.r, b.r);
+    EXPECT_GT(a.r, 0.0);
+  }
+  // A .bsdf that is not a tensor file is refused by the RGL reader, naming the file.
+  const std::filesystem::path bad = std::filesystem::temp_directory_path() / "shadelab_registry_bad.bsdf";
+  {
+    std::ofstream out(bad, std::ios::binary);
+    out << "not a tensor file";
+  }
+  const auto refused = make_brdf("measured", {{"file", bad.string()}});
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("shadelab_registry_bad.bsdf"), std::string::npos) << refused.error().message;
+  std::filesystem::remove(file);
+  std::filesystem::remove(bad);
 }
 
 }  // namespace

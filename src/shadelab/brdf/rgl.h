@@ -140,6 +140,7 @@ class RglBrdf final : public Brdf {
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
   bool is_reciprocal() const override { return false; }
+  bool is_tabulated() const override { return true; }  // interpolated between measured directions (brdf.h)
   const RglTable& table() const { return *m_table; }
   // The loader's eval(wi, wo) in its own naming (wi: the direction the table is conditioned on).
   Rgb loader_eval(const Vec3& wi, const Vec3& wo) const;

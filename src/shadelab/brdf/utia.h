@@ -72,6 +72,7 @@ class UtiaBrdf final : public Brdf {
   double pdf(const Vec3& wi, const Vec3& wo) const override;
   BrdfSample sample(const Vec3& wo, Vec2 u, double u_lobe) const override;
   bool is_reciprocal() const override { return false; }
+  bool is_tabulated() const override { return true; }  // interpolated between measured directions (brdf.h)
   const UtiaTable& table() const { return *m_table; }
 
  private:
