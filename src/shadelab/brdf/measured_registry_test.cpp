@@ -106,8 +106,8 @@ std::string error_of(const ParamAssignments& params) {
 TEST(MeasuredRegistry, BadFilesAndParametersAreOneLineNamingTheFile) {
   const fs::path dir = testing::measured_test_folder().dir();
   ASSERT_FALSE(dir.empty());
-  EXPECT_EQ(error_of({}), "brdf measured: parameter 'file' is required (a MERL 100 .binary file (34,992,012 bytes); in a "
-                          "scene, relative to the scene file's folder)");
+  EXPECT_EQ(error_of({}), "brdf measured: parameter 'file' is required (a MERL 100 .binary (34,992,012 bytes), RGL .bsdf "
+                          "(RGB) or UTIA .bin file; in a scene, relative to the scene file's folder)");
   EXPECT_EQ(error_of({{"file", ""}}), "brdf measured: parameter 'file' is an empty path");
   EXPECT_EQ(error_of({{"files", "x.binary"}}), "brdf measured: unknown parameter 'files' (parameters: file)");
   const fs::path missing = dir / "missing.binary";
