@@ -45,7 +45,7 @@ void check_full(std::string_view input, const std::string& name) {
   const std::string_view payload = input.size() >= 4 ? input.substr(4) : std::string_view{};
   const std::size_t start = 12 + offset % planes;
   const std::size_t length = std::min(payload.size(), MerlTable::file_bytes - start);
-  std::memcpy(file.data() + start, payload.data(), length);
+  if (length > 0) std::memcpy(file.data() + start, payload.data(), length);  // an empty view may hold a null pointer
   // The first value that is not finite, as the parser must name it.
   std::size_t first_bad = MerlTable::count * 3;
   for (std::size_t v = (start - 12) / 8; v * 8 + 12 < start + length; ++v) {

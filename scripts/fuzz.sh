@@ -14,12 +14,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-30}
 shift || true
-all=(scene obj gltf glb exr hdr png ktx cli ktx2 shard http scene_dict merl)
+all=(scene obj gltf glb exr hdr png ktx cli ktx2 shard http scene_dict merl rgl utia)
 # Each harness runs SECONDS times its share (default 1): the four of issue 40 (KTX 2 reader, shard parts and
 # merge, the served page's request parser, the scene-dict converter) run half as long, so CI's fuzz stage
 # grows by about 15 s wall (docs/testing.md, "Fuzz time"); the MERL reader (issue 41) a sixth as long (5 s of
-# 30: its input is a header and a size check, or values written into one full-size file).
-declare -A share=([ktx2]=0.5 [shard]=0.5 [http]=0.5 [scene_dict]=0.5 [merl]=0.17)
+# 30: its input is a header and a size check, or values written into one full-size file), the RGL tensor reader a
+# third (10 s: a container of named fields, more paths) and the UTIA reader a sixth (5 s: a size check and values).
+declare -A share=([ktx2]=0.5 [shard]=0.5 [http]=0.5 [scene_dict]=0.5 [merl]=0.17 [rgl]=0.33 [utia]=0.17)
 harnesses=("$@")
 [ ${#harnesses[@]} -eq 0 ] && harnesses=("${all[@]}")
 jobs=${FUZZ_JOBS:-$(nproc 2>/dev/null || echo 2)}
