@@ -9,7 +9,7 @@ namespace {
 Ggx::Params ggx_params(const SpecGloss::Params& p) {
   Ggx::Params g;
   g.kd = SpecGloss::c_diff(p);
-  g.ks = Rgb(1.0, 1.0, 1.0);
+  g.ks = Rgb{1.0, 1.0, 1.0};
   g.alpha_x = SpecGloss::alpha(p);
   g.alpha_y = g.alpha_x;
   g.f = Ggx::FresnelKind::schlick;  // F = f0 + (1 - f0)(1 - L.H)^5, f0 = specular

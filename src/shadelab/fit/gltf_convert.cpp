@@ -68,13 +68,13 @@ AlbedoDifference difference_of(const std::vector<Rgb>& sg, const std::vector<Rgb
 // The unit box <-> the factors (linear in each range).
 MetalRoughFactors from_unit(const double* u) {
   MetalRoughFactors m;
-  m.base_color = Rgb(u[0], u[1], u[2]);
+  m.base_color = Rgb{u[0], u[1], u[2]};
   m.metallic = u[3];
   m.roughness = u[4];
   m.ior = kIor;
   m.specular = u[5];
   const double s = specular_color_max();
-  m.specular_color = Rgb(u[6] * s, u[7] * s, u[8] * s);
+  m.specular_color = Rgb{u[6] * s, u[7] * s, u[8] * s};
   return m;
 }
 

@@ -20,8 +20,8 @@ void print(const char* name, const GltfMaterialConversion& c) {
 // dielectric with f0 = specular represent exactly.
 TEST(GltfConvert, ARepresentableMaterialConvertsExactly) {
   SpecGloss::Params sg;
-  sg.diffuse = Rgb(0.0, 0.0, 0.0);
-  sg.specular = Rgb(0.9, 0.6, 0.3);
+  sg.diffuse = Rgb{0.0, 0.0, 0.0};
+  sg.specular = Rgb{0.9, 0.6, 0.3};
   sg.glossiness = 0.7;
   const GltfMaterialConversion c = convert_spec_gloss(sg);
   print("black diffuse", c);
@@ -34,8 +34,8 @@ TEST(GltfConvert, ARepresentableMaterialConvertsExactly) {
 // so no factors match at every angle; the fit trades the angles against each other (its RMS below the start's).
 TEST(GltfConvert, ADiffuseMaterialIsReportedAndTheFitBeatsTheStart) {
   SpecGloss::Params sg;
-  sg.diffuse = Rgb(0.6, 0.4, 0.2);
-  sg.specular = Rgb(0.04, 0.04, 0.04);
+  sg.diffuse = Rgb{0.6, 0.4, 0.2};
+  sg.specular = Rgb{0.04, 0.04, 0.04};
   sg.glossiness = 0.5;
   const GltfMaterialConversion c = convert_spec_gloss(sg);
   print("diffuse", c);
