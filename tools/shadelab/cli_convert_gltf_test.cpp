@@ -97,6 +97,28 @@ TEST(CliConvertGltf, ConvertsSpecGlossFactorsAndReportsTheAlbedoDifference) {
   EXPECT_EQ(b.substr(b.size() - 52), original.substr(original.size() - 52));  // the 44-byte BIN chunk and its header
 }
 
+// The independent peer: gltf-transform's metalRough() (tools/gltf_transform, npm-pinned; scripts/setup.sh installs
+// it) on the same file. It implements PR #1719's conversion, so its albedo difference is our start's, and the fit is
+// never worse than it.
+TEST(CliConvertGltf, GltfTransformsMetalRoughIsPr1719AndTheFitBeatsIt) {
+  const auto d = test_files();
+  const std::string tools = std::string(SHADELAB_SCENES_DIR) + "/../tools/gltf_transform";
+  ASSERT_TRUE(std::filesystem::exists(tools + "/node_modules/@gltf-transform/functions"))
+      << tools << "/node_modules is missing (scripts/setup.sh runs npm ci there)";
+  const auto peer = d / "peer.gltf";
+  const std::string node = "node " + tools + "/metal_rough.mjs " + (d / "spec_gloss.gltf").string() + " " + peer.string();
+  ASSERT_EQ(std::system(node.c_str()), 0) << node;
+  const auto j = json_of(run("convert gltf " + (d / "spec_gloss.gltf").string() + " --out " + (d / "ours.gltf").string() +
+                             " --peer " + peer.string() + " --json --evaluations 100"));
+  ASSERT_EQ(j["materials"].size(), 4u);
+  for (const auto& m : j["materials"]) {
+    EXPECT_NEAR(m["peer_max_albedo_difference"].get<double>(), m["pr1719_max_albedo_difference"].get<double>(), 1e-6) << m;
+    EXPECT_LE(m["rms_albedo_difference"].get<double>(), m["peer_rms_albedo_difference"].get<double>() + 1e-9) << m;
+  }
+  // plastic: 100 evaluations take the RMS to less than half the peer's (0.00119 against 0.00279).
+  EXPECT_LT(j["materials"][1]["rms_albedo_difference"].get<double>(), 0.5 * j["materials"][1]["peer_rms_albedo_difference"].get<double>());
+}
+
 TEST(CliConvertGltf, BadInputIsOneLineNamingTheFileOrFieldAndExitTwo) {
   const auto d = test_files();
   const std::string out = " --out " + (d / "bad_out.gltf").string();
