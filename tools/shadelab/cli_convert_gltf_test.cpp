@@ -95,6 +95,8 @@ TEST(CliConvertGltf, ConvertsSpecGlossFactorsAndReportsTheAlbedoDifference) {
   EXPECT_EQ(glb_json(b)["materials"], g["materials"]);
   const std::string original = read_all(d / "spec_gloss.glb");
   EXPECT_EQ(b.substr(b.size() - 52), original.substr(original.size() - 52));  // the 44-byte BIN chunk and its header
+  const auto glb_again = json_of(run("convert gltf " + glb_out.string() + " --out " + (d / "again.glb").string() + " --json"));
+  EXPECT_EQ(glb_again["converted"], 0);  // tinygltf reads the written .glb
 }
 
 // The independent peer: gltf-transform's metalRough() (tools/gltf_transform, npm-pinned; scripts/setup.sh installs
