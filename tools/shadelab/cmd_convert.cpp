@@ -425,7 +425,7 @@ void add_convert_command(CLI::App& app, Command& command) {
   gl->add_option("--out", g->out, "the output, in IN's container (.gltf or .glb)")->required();
   gl->add_flag("--report", g->report, "per material: the max directional-albedo difference, PR #1719's and the fit's");
   gl->add_flag("--json", g->json, "machine-readable output (with the report)");
-  gl->add_option("--evaluations", g->evaluations, "BOBYQA's objective evaluations per material")->capture_default_str();
+  gl->add_option("--evaluations", g->evaluations, "BOBYQA's objective evaluations per material (0: the better of the two starts, no fit)")->capture_default_str();
   gl->add_option("--peer", g->peer, "another converter's result of IN (same material order): its difference beside ours");
   gl->callback([g, &command] { command.run = [g] { run_gltf(*g); }; });
 }

@@ -155,13 +155,13 @@ GltfMaterialConversion convert_spec_gloss(const SpecGloss::Params& sg, const Glt
   if (objective(kDims, u_metal.data(), nullptr, &ctx) < rms_pr) u = u_metal;
   // NLopt's C interface (Debian's libnlopt-dev has no C++ header), as fit/fit.cpp calls it.
   const std::unique_ptr<nlopt_opt_s, decltype(&nlopt_destroy)> opt(nlopt_create(NLOPT_LN_BOBYQA, kDims), &nlopt_destroy);
-  if (opt && ctx.best > kStopRms) {
+  if (opt && ctx.best > kStopRms && options.max_evaluations > 0) {
     nlopt_set_lower_bounds1(opt.get(), 0.0);
     nlopt_set_upper_bounds1(opt.get(), 1.0);
     nlopt_set_xtol_rel(opt.get(), 1e-6);
     nlopt_set_ftol_abs(opt.get(), 1e-8);
     nlopt_set_stopval(opt.get(), kStopRms);
-    nlopt_set_maxeval(opt.get(), std::max(20, options.max_evaluations));
+    nlopt_set_maxeval(opt.get(), options.max_evaluations);
     nlopt_set_initial_step1(opt.get(), 0.05);
     nlopt_set_min_objective(opt.get(), objective, &ctx);
     double value = 0.0;

@@ -50,7 +50,7 @@ struct AlbedoDifference {
 
 struct GltfConvertOptions {
   std::vector<double> theta_deg = {0, 10, 20, 30, 40, 50, 60, 70, 80};
-  int max_evaluations = 300;  // BOBYQA's objective evaluations
+  int max_evaluations = 300;  // BOBYQA's objective evaluations (0: the better start, no fit)
 };
 
 // The difference of the directional albedos on the grid.
