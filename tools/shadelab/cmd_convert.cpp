@@ -12,10 +12,10 @@
 #include <fmt/core.h>
 #include <tiny_gltf.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
