@@ -27,6 +27,14 @@ if ! npm ls --prefix "$containers" ktx-parse >/dev/null 2>&1; then
   (cd "$containers" && npm ci --no-audit --no-fund)
 fi
 
+# The peer of `convert gltf` (tools/gltf_transform): npm's @gltf-transform/core, /extensions and /functions, pinned
+# by its package-lock.json; the CLI test runs its metalRough() with node.
+gltf_transform="$(cd "$(dirname "$0")/.." && pwd)/tools/gltf_transform"
+if ! npm ls --prefix "$gltf_transform" @gltf-transform/functions >/dev/null 2>&1; then
+  echo "setup: npm ci in tools/gltf_transform"
+  (cd "$gltf_transform" && npm ci --no-audit --no-fund)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
