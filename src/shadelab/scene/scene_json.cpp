@@ -591,9 +591,9 @@ class Parser {
           const Node p(value, params->child_pointer(key));
           std::pair<std::string, std::string> assignment{key, param_text(p)};
           // A file parameter (measured's table) names a file relative to the scene's folder, as meshes and images.
-          const std::string& name = key;  // a structured binding: clang 14 cannot capture one in a lambda
+          const std::string& param_name = key;  // a structured binding: clang 14 cannot capture one in a lambda
           const auto spec = std::find_if(info->params.begin(), info->params.end(),
-                                         [&name](const ParamSpec& ps) { return ps.name == name; });
+                                         [&param_name](const ParamSpec& ps) { return ps.name == param_name; });
           if (spec != info->params.end() && spec->kind == ParamKind::file) assignment.second = file(p).string();
           // Validate each parameter alone first, so the error points at it.
           auto one = parse_params(info->name, info->params, {assignment});
