@@ -38,12 +38,7 @@ bool is_grey_colour(const FitParamValue& p);
 
 std::string numbers_text(const FitParamValue& p) {
   if (is_grey_colour(p)) return fmt::format("{:.6g}", p.numbers[0]);
-  std::string s;
-  for (std::size_t i = 0; i < p.numbers.size(); ++i) {
-    if (i > 0) s += (p.group_size > 0 && i % static_cast<std::size_t>(p.group_size) == 0) ? ";" : ",";
-    s += fmt::format("{:.6g}", p.numbers[i]);
-  }
-  return s;
+  return fit_param_text(p, 6);
 }
 
 // A grey colour (three equal channels) as one number, as a user types it.

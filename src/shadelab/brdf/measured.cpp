@@ -22,10 +22,7 @@ namespace shadelab {
 namespace {
 
 // Direction at elevation cos theta = z and azimuth phi.
-Vec3 direction(double z, double phi) {
-  const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
-  return {s * std::cos(phi), s * std::sin(phi), z};
-}
+Vec3 direction(double z, double phi) { return spherical_direction(std::sqrt(std::max(0.0, 1.0 - z * z)), z, phi); }
 
 // The interpolation coordinate of one axis: the lower cell and the weight of the upper one.
 struct Axis {

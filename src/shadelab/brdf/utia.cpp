@@ -20,10 +20,7 @@ namespace {
 constexpr double deg = pi / 180.0;
 
 // Direction at elevation cos theta = z and azimuth phi.
-Vec3 direction_z(double z, double phi) {
-  const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
-  return {s * std::cos(phi), s * std::sin(phi), z};
-}
+Vec3 direction_z(double z, double phi) { return spherical_direction(std::sqrt(std::max(0.0, 1.0 - z * z)), z, phi); }
 
 // One axis of the interpolation: the two neighbouring samples and the weight of the upper one.
 struct Axis {

@@ -89,17 +89,6 @@ double halton(int k, std::size_t d) {
   return r;
 }
 
-std::string format_numbers(const FitParamValue& p) {
-  std::string s;
-  for (std::size_t i = 0; i < p.numbers.size(); ++i) {
-    if (i > 0) s += (p.group_size > 0 && i % static_cast<std::size_t>(p.group_size) == 0) ? ";" : ",";
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", p.numbers[i]);  // round-trips a double
-    s += buf;
-  }
-  return s;
-}
-
 constexpr std::size_t chunk = 2048;
 
 // sum_k w_k sum_c (T(f cos_i) - t_k,c)^2 over the data, in fixed chunks added in order (thread-count independent).
@@ -145,6 +134,17 @@ double total_weight(const FitData& data) {
 }
 
 }  // namespace
+
+std::string fit_param_text(const FitParamValue& p, int digits) {
+  std::string s;
+  for (std::size_t i = 0; i < p.numbers.size(); ++i) {
+    if (i > 0) s += (p.group_size > 0 && i % static_cast<std::size_t>(p.group_size) == 0) ? ";" : ",";
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.*g", digits, p.numbers[i]);  // 17 digits round-trip a double
+    s += buf;
+  }
+  return s;
+}
 
 double fit_residual(const Brdf& f, const FitData& data, FitMetric metric) {
   const double w = total_weight(data);
@@ -296,7 +296,7 @@ Result<FitResult> fit_model(const std::string& model, const FitData& data, const
     }
     ParamAssignments a = options.fixed;
     for (const auto& v : values) {
-      if (v.fitted) a.emplace_back(v.name, format_numbers(v));
+      if (v.fitted) a.emplace_back(v.name, fit_param_text(v));
     }
     return a;
   };

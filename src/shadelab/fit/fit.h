@@ -55,6 +55,10 @@ struct FitResult {
   std::size_t configurations = 0;
 };
 
+// A parameter's numbers as --param takes them ("0.3", "0.8,0.6,0.2", lobes "a,b,c,d;e,f,g,h"), each with
+// `digits` significant digits (17: reads back to the same double).
+std::string fit_param_text(const FitParamValue& p, int digits = 17);
+
 // Fits `model` to the data. Errors (unknown model, a fixed or free name the model does not have, a bad value)
 // name the parameter.
 Result<FitResult> fit_model(const std::string& model, const FitData& data, const FitOptions& options = {});
