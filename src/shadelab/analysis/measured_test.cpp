@@ -1,5 +1,5 @@
 // The measured model's sampler (brdf/measured.h) on tables the virtual gonioreflectometer wrote (brdf/merl.h):
-// chi-square over 48 (table, theta) configurations with a Sidak correction, the pdf's integral, the sampled pdf and
+// chi-square over 24 (table, theta) configurations with a Sidak correction, the pdf's integral, the sampled pdf and
 // weight against pdf() and eval(), and the mean weight against the albedo by quadrature (independent of sample()).
 #include <gtest/gtest.h>
 
@@ -60,9 +60,14 @@ const std::vector<Table>& tables() {
 
 constexpr double thetas[] = {0.0, 35.0, 65.0, 85.0};
 
-TEST(MeasuredSamplers, ChiSquareOverFortyEightConfigurations) {
-  const int tests = static_cast<int>(tables().size() * std::size(thetas));
-  ASSERT_GE(tests, 48);
+// Six of the twelve tables (every one goes through the same piecewise-constant sampler; these span the diffuse,
+// the sharpest, the coloured, the anisotropic and the sheen tables): 24 configurations in about 14 s, where all 48
+// took 30 s of the suite's budget.
+constexpr std::size_t chi_square_tables[] = {0, 1, 2, 6, 7, 10};
+
+TEST(MeasuredSamplers, ChiSquareOverTwentyFourConfigurations) {
+  const int tests = static_cast<int>(std::size(chi_square_tables) * std::size(thetas));
+  ASSERT_GE(tests, 24);
   const double level = sidak_significance(0.01, tests);
   // Bins on the sampler's own cell boundaries (8 x 32 over the upper hemisphere: 8 x 4 of its 64 x 128 cells each;
   // the view's azimuth is 0). The per-cell quadrature to 3e-3 (about 1 of ~400 expected counts, against a noise of
@@ -73,7 +78,8 @@ TEST(MeasuredSamplers, ChiSquareOverFortyEightConfigurations) {
   o.phi_bins = 32;
   o.cell_rel_tol = 3e-3;
   double lowest = 1.0;
-  for (const auto& t : tables()) {
+  for (std::size_t index : chi_square_tables) {
+    const Table& t = tables().at(index);
     for (double th : thetas) {
       const ChiSquareResult r = chi_square_test(*t.brdf, view(th), o);
       lowest = std::min(lowest, r.p_value);
