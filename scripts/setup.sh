@@ -13,7 +13,7 @@ packages=(
   libembree-dev libtinyobjloader-dev libtinygltf-dev
   blender-data
   glslang-tools spirv-tools mesa-vulkan-drivers libvulkan-dev chromium
-  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-jsonschema
   parallel slurm-wlm slurm-client munge
   emscripten
   clang-14 libclang-rt-14-dev llvm-14
