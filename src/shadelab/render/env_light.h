@@ -27,6 +27,10 @@ class EnvironmentLight {
   explicit EnvironmentLight(const Scene& scene);
 
   bool has_light() const { return m_active; }
+  // The radiance is the same from every direction (a uniform environment, no sun, no hemisphere light): BRDF
+  // sampling then draws f cos exactly as a cosine-weighted or VNDF sampler does, and light sampling only adds
+  // variance (half its directions lie below the surface).
+  bool is_constant() const { return m_active && m_constant && !m_has_sun; }
   Rgb radiance(const Vec3& w) const;
   // Everything but the sky's sun disk (a game renders the sun as a directional light).
   Rgb radiance_without_sun(const Vec3& w) const { return m_active ? base_radiance(w) : Rgb{}; }

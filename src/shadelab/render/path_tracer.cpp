@@ -150,7 +150,10 @@ Result<bool> Integrator::prepare() {
       m_lights.push_back({LightRef::Type::disk, static_cast<int>(i)});
     }
   }
-  if (m_env.has_light()) {
+  // A constant environment is left to BRDF sampling (MIS weight 1 when a BRDF ray escapes), as Cycles does with a
+  // constant world ("Background MIS has been disabled"): every light sample then goes to the scene's other
+  // lights. Light-only rendering still samples it (there, BRDF rays that escape do not count).
+  if (m_env.has_light() && !(m_env.is_constant() && m_mode == SamplingMode::mis)) {
     m_env_light = static_cast<int>(m_lights.size());
     m_lights.push_back({LightRef::Type::environment, 0});
   }

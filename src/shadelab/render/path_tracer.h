@@ -5,7 +5,9 @@
 // - Next-event estimation: one light per vertex, chosen uniformly among the scene's lights (delta lights,
 //   sphere lights, emissive spheres, quads and disks, the environment), with a shadow ray; multiple
 //   importance sampling with the power heuristic (Veach 1997) between that and BRDF sampling for every
-//   light that BRDF sampling can hit. Delta lights are reached by light sampling only.
+//   light that BRDF sampling can hit. Delta lights are reached by light sampling only. A constant environment
+//   (no sun, no hemisphere light) is not light-sampled: BRDF sampling reaches it with weight 1 (as Cycles with a
+//   constant world), and the light samples go to the other lights.
 // - Russian roulette from RenderSettings::rr_depth on, with survival probability min(1, max(throughput)).
 // - Paths start at the camera, so at each vertex wo points toward the camera and wi toward the light, the
 //   orientation the published non-reciprocal forms (original Phong and Blinn-Phong, wrapped diffuse) are

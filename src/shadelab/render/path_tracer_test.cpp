@@ -155,6 +155,28 @@ TEST(PathTracer, MisIsUnbiasedForEveryModel) {
   }
 }
 
+TEST(PathTracer, AConstantEnvironmentIsLeftToBrdfSampling) {
+  // Issue 42: under a constant environment L, cosine sampling of a Lambert plane draws exactly f cos / pdf = kd,
+  // so one bounce of the estimate is kd L with no variance at all; light sampling the environment as well
+  // (uniform over the sphere, half of it below the plane) could only add variance. Cycles turns the world's
+  // light sampling off for a constant world for this reason. The plane alone, and with a sphere light beside it
+  // (then the light takes every light sample: the mean still agrees with BRDF sampling alone).
+  Scene s;
+  s.quads.push_back(floor_quad(50.0, 0.0, add_material(s, "lambert", {{"kd", "0.6"}})));
+  s.settings.max_depth = 1;
+  s.environment.kind = Environment::Kind::uniform;
+  s.environment.uniform = Rgb::gray(0.5);
+  const Vec3 eye{0.0, 1.0, 0.0}, down = normalize(Vec3{0.3, -1.0, 0.1});
+  const auto alone = estimate_radiance(s, eye, down, 4096).value();
+  EXPECT_NEAR(alone.mean.g, 0.3, 1e-12);
+  EXPECT_LE(alone.standard_error.g, 1e-12);
+  s.lights.push_back(SphereLight{{1.0, 2.0, 0.5}, 0.4, Rgb::gray(4.0)});
+  const auto mis = estimate_radiance(s, eye, down, 64 * 256).value();
+  const auto brdf = estimate_radiance(s, eye, down, 64 * 256, SamplingMode::brdf).value();
+  expect_within(mis.mean.g, brdf.mean.g, std::hypot(mis.standard_error.g, brdf.standard_error.g), 4.0,
+                "constant environment and a sphere light");
+}
+
 TEST(PathTracer, StratifiedSamplingConvergesFasterThanIndependentSampling) {
   // Direct light on a Lambert plane from a sphere light and a uniform sky. The standard error reported by
   // estimate_radiance is the spread of 64 independent replicas, so it is the real error of an N/64-sample
