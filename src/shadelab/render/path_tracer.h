@@ -8,7 +8,8 @@
 //   light that BRDF sampling can hit. Delta lights are reached by light sampling only. A constant environment
 //   (no sun, no hemisphere light) is not light-sampled: BRDF sampling reaches it with weight 1 (as Cycles with a
 //   constant world), and the light samples go to the other lights.
-// - Russian roulette from RenderSettings::rr_depth on, with survival probability min(1, max(throughput)).
+// - Russian roulette from RenderSettings::rr_depth on, with survival probability min(1, sqrt(max(throughput)))
+//   (Cycles' rule).
 // - Paths start at the camera, so at each vertex wo points toward the camera and wi toward the light, the
 //   orientation the published non-reciprocal forms (original Phong and Blinn-Phong, wrapped diffuse) are
 //   defined for; no adjoint (light-to-camera) transport is done, so their non-reciprocity is never flipped.

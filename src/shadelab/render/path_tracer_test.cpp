@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "shadelab/brdf/test_measured_file.h"
 #include "shadelab/light/units.h"
@@ -75,6 +76,34 @@ TEST(PathTracer, WhiteFurnaceClosedBox) {
   const auto e = estimate_radiance(s, {0.1, 0.2, 0.3}, normalize(Vec3{0.2, -1, 0.1}), 4000, SamplingMode::mis).value();
   // Truncation at 64 bounces leaves 0.5^64 of the series: nothing measurable.
   expect_within(e.mean.r, 0.5, e.standard_error.r, 4.0, "closed box");
+}
+
+TEST(PathTracer, RussianRouletteIsUnbiasedAndCostsLittleVariance) {
+  // Issue 42: the closed furnace box (radiance Le / (1 - a) = 0.5 everywhere) with Russian roulette from the
+  // first vertex. Survival min(1, sqrt(max throughput)) (Cycles' path_state_continuation_probability) keeps the
+  // estimate unbiased. This box is roulette's worst case (without it every path carries nearly the same value):
+  // the standard error is 5.0x that without roulette, where survival min(1, max throughput) (the rule before,
+  // pbrt's) gave 7.9x; the bound 6.4 lies between (each ratio is known to about 13% from 64 replicas; the
+  // seed is fixed, so the figures are the same on every run).
+  Scene s;
+  const int m = add_material(s, "lambert", {{"kd", "0.5"}}, Rgb::gray(0.25));
+  const double h = 1.0;
+  s.quads.push_back({{-h, -h, -h}, {0, 0, 2 * h}, {2 * h, 0, 0}, m});
+  s.quads.push_back({{-h, h, -h}, {2 * h, 0, 0}, {0, 0, 2 * h}, m});
+  s.quads.push_back({{-h, -h, -h}, {0, 2 * h, 0}, {0, 0, 2 * h}, m});
+  s.quads.push_back({{h, -h, -h}, {0, 0, 2 * h}, {0, 2 * h, 0}, m});
+  s.quads.push_back({{-h, -h, -h}, {2 * h, 0, 0}, {0, 2 * h, 0}, m});
+  s.quads.push_back({{-h, -h, h}, {0, 2 * h, 0}, {2 * h, 0, 0}, m});
+  s.settings.max_depth = 64;
+  const Vec3 o{0.1, 0.2, 0.3}, d = normalize(Vec3{0.2, -1, 0.1});
+  s.settings.rr_depth = 0;
+  const auto off = estimate_radiance(s, o, d, 64 * 256, SamplingMode::mis).value();
+  s.settings.rr_depth = 1;
+  const auto rr = estimate_radiance(s, o, d, 64 * 256, SamplingMode::mis).value();
+  expect_within(rr.mean.r, 0.5, rr.standard_error.r, 4.0, "closed box with roulette");
+  std::printf("[ roulette ] standard error %.3g with roulette from vertex 1, %.3g without (ratio %.3f)\n",
+              rr.standard_error.r, off.standard_error.r, rr.standard_error.r / off.standard_error.r);
+  EXPECT_LT(rr.standard_error.r, 6.4 * off.standard_error.r);
 }
 
 Scene plane_scene(const SceneLight& light) {
