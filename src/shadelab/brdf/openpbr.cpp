@@ -135,7 +135,7 @@ ModelInfo openpbr_model() {
                  "(f_dielectric + S_diel f_EON))]";
   info.source = "OpenPBR Surface 1.1 (ASWF); EON (Portsmouth, Kutz, Hill 2024); F82-tint (Kutz et al. 2021); "
                 "fuzz: Zeltner, Burley, Chiang 2022";
-  info.no_shader = "its dielectric albedo table (24 x 32 x 32) exceeds a GLSL ES uniform block and the kernel is not "
+  info.no_shader = "its dielectric albedo table (48 x 32 x 32) exceeds a GLSL ES uniform block and the kernel is not "
                    "in the exporter's list (docs/models/openpbr.md, \"Shaders\")";
   info.params = {
       {"base_weight", ParamKind::scalar, "1", 0.0, 1.0, {}, "multiplier of base_color (diffuse w_d, metal F0)", 0, {}},

@@ -1,6 +1,6 @@
 // shadelab kernels: the openpbr kernel (openpbr.sl) compiled as C++ with its dielectric albedo table's texel fetches.
 // openpbr.sl is not in kernels.h's list: the shader exporter does not embed it (the model has no shader, see
-// docs/models/openpbr.md: its 24 x 32 x 32 table is larger than a GLSL ES uniform block), and kernels.h's
+// docs/models/openpbr.md: its 48 x 32 x 32 table is larger than a GLSL ES uniform block), and kernels.h's
 // dependants do not recompile for it. It reads kernels.h's kernels (fresnel, microfacet, ggx_energy).
 #pragma once
 

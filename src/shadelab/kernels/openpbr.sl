@@ -57,7 +57,7 @@ const real OPENPBR_ALPHA_MIN = 1e-4;  // the floor of the GGX alphas (roughness 
 // E_row(mu) mu d(mu) of each row's interpolant (row 0: the hemispherical Fresnel average E_F(eta_k)), read with the
 // same weights. Interpolation error against the converged integral: measured in kernels/openpbr_test.cpp and stated
 // in docs/models/openpbr.md.
-const int OPENPBR_DE_SLICES = 24;
+const int OPENPBR_DE_SLICES = 48;
 const real OPENPBR_DE_KAPPA_MIN = 0.1;  // the columns' warp parameter floor
 
 inline real openpbr_eta_from_e(real e) {

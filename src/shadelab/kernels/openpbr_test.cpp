@@ -66,8 +66,9 @@ TEST(OpenpbrTable, InterpolationErrorAgainstTheConvergedIntegral) {
   }
   std::printf("[ openpbr  ] E_d interpolation: max %.2e; alpha >= 0.5: %.2e; reference 128 vs 64 nodes: %.2e\n", worst,
               worst_claim, worst_ref);
+  // 48 slices in sqrt(e): 9.1e-5 at most (24 slices: 2.6e-4, below alpha 0.5 over 1e-4; seen to fail).
   EXPECT_LE(worst_claim, 1e-4);
-  EXPECT_LE(worst, 3e-4);
+  EXPECT_LE(worst, 1e-4);
   EXPECT_LE(worst_ref, 5e-5);
 }
 
