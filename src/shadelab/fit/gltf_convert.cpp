@@ -363,7 +363,7 @@ AlbedoDifference table_albedo_difference(const SpecGloss::Params& sg, const Meta
   return difference_of(std::vector<Rgb>(a.begin(), a.end()), std::vector<Rgb>(b.begin(), b.end()), grid);
 }
 
-FastConversion convert_spec_gloss_fast(const SpecGloss::Params& sg) {
+FastConversion convert_spec_gloss_fast(const SpecGloss::Params& sg, const FastOptions& options) {
   constexpr int kN = 8;  // base (3), roughness, specular, f0 (3)
   constexpr int kK = GltfAlbedoTables::angles;
   const GltfAlbedoTables& t = gltf_albedo_tables();
@@ -372,8 +372,12 @@ FastConversion convert_spec_gloss_fast(const SpecGloss::Params& sg) {
   // PR #1719's start: base = diffuse, roughness = 1 - glossiness, s = 1, f0 = 0.996 specular.
   std::array<double, kN> x{sg.diffuse.r, sg.diffuse.g, sg.diffuse.b, 1.0 - sg.glossiness, 1.0,
                            q * sg.specular.r, q * sg.specular.g, q * sg.specular.b};
-  const auto clamp_x = [](std::array<double, kN>& v) {
+  // The box: [0, 1] for each, roughness within the band about the source's 1 - glossiness.
+  const double r_lo = std::max(0.0, 1.0 - sg.glossiness - options.roughness_band);
+  const double r_hi = std::min(1.0, 1.0 - sg.glossiness + options.roughness_band);
+  const auto clamp_x = [&](std::array<double, kN>& v) {
     for (double& e : v) e = std::clamp(e, 0.0, 1.0);
+    v[3] = std::clamp(v[3], r_lo, r_hi);
   };
   clamp_x(x);
   // Residuals rho_gltf - rho_sg (27) and, when J is given, their Jacobian (analytic; d/dr from the interpolant).
@@ -410,7 +414,7 @@ FastConversion convert_spec_gloss_fast(const SpecGloss::Params& sg) {
   double cost = residuals(x, res, &jac);
   double lambda = 1e-3;
   FastConversion out;
-  for (int it = 0; it < 40 && cost > 1e-20 && lambda < 1e12; ++it) {
+  for (int it = 0; it < options.max_steps && cost > 1e-20 && lambda < 1e12; ++it) {
     ++out.iterations;
     // Normal equations (J^T J + lambda diag) d = -J^T r, solved by Gaussian elimination with partial pivoting.
     std::array<std::array<double, kN + 1>, kN> a{};

@@ -104,9 +104,19 @@ struct FastConversion {
   MetalRoughFactors result;
   int iterations = 0;  // Levenberg-Marquardt steps tried
 };
-// The rule: metallic 0, ior 1000, and base_color (3), roughness, specularFactor and f0 (3; specularColor = f0 /
-// 0.996) by a projected Levenberg-Marquardt on the 27 residuals of the tables' rho_gltf - rho_sg (the exact fit's
-// objective, on the tables), from PR #1719's start, at most 40 steps. Deterministic.
-FastConversion convert_spec_gloss_fast(const SpecGloss::Params& sg);
+// The rule: metallic 0, ior 1000, and base_color (3), roughness (within FastOptions::roughness_band of 1 - glossiness),
+// specularFactor and f0 (3; specularColor = f0 / 0.996) by a projected Levenberg-Marquardt (Marquardt 1963: the
+// normal equations damped by lambda diag(J^T J), lambda / 4 after a step that lowers the sum of squares, x 8 after
+// one that does not) on the 27 residuals of the tables' rho_gltf - rho_sg (the exact fit's objective, least RMS, on
+// the tables), the Jacobian analytic (max3(f0) by its first largest channel), from PR #1719's start, at most
+// max_steps steps. Deterministic.
+struct FastOptions {
+  // The roughness stays within this of the source's 1 - glossiness. The albedo cannot see the lobe's width: left
+  // free (1), the fit trades it for albedo and turns a glossy highlight (glossiness 0.9) into a mirror (roughness 0);
+  // the exact fit moves it by 0.03 on the plastic (docs/conversions.md, "The fast rule").
+  double roughness_band = 0.05;
+  int max_steps = 60;
+};
+FastConversion convert_spec_gloss_fast(const SpecGloss::Params& sg, const FastOptions& options = {});
 
 }  // namespace shadelab
