@@ -11,7 +11,6 @@
 #include <mutex>
 
 #include "shadelab/analysis/albedo.h"
-#include "shadelab/brdf/ggx.h"
 #include "shadelab/core/constants.h"
 #include "shadelab/numeric/quadrature.h"
 #include "shadelab/sampling/warp.h"
