@@ -26,6 +26,7 @@
 #include <algorithm>
 
 #include "cli_common.h"
+#include "shadelab/brdf/fresnel.h"
 #include "shadelab/fit/gltf_convert.h"
 #include "shadelab/fit/shininess.h"
 #include "shadelab/image/image_io.h"
@@ -369,16 +370,17 @@ struct TexturedMaterial {
   double seconds = 0.0;
 };
 
-constexpr double kOutIorF0 = (999.0 / 1001.0) * (999.0 / 1001.0);  // ((ior - 1)/(ior + 1))^2 at ior 1000
+// ((ior - 1)/(ior + 1))^2 at the written ior 1000 (brdf/fresnel.h): f0 = this x specularColor.
+double out_f0_scale() { return f0_from_ior(1000.0); }
 
 // The metallic-roughness factors a renderer reads at texel p of the outputs (codes decoded as glTF says: sRGB colour,
-// linear data), with the factors run_gltf writes (metallic 0, roughness 1, specular 1, specularColor 1/kOutIorF0).
+// linear data), with the factors run_gltf writes (metallic 0, roughness 1, specular 1, specularColor 1/out_f0_scale()).
 MetalRoughFactors decoded_texel(const TexturedMaterial& t, std::size_t p) {
   const auto& lut = srgb8_to_linear_table();
   MetalRoughFactors m;
   for (int c = 0; c < 3; ++c) {
     m.base_color[c] = static_cast<double>(lut[t.base_color.rgba[4 * p + static_cast<std::size_t>(c)]]);
-    m.specular_color[c] = static_cast<double>(lut[t.specular_color.rgba[4 * p + static_cast<std::size_t>(c)]]) / kOutIorF0;
+    m.specular_color[c] = static_cast<double>(lut[t.specular_color.rgba[4 * p + static_cast<std::size_t>(c)]]) / out_f0_scale();
   }
   m.metallic = 0.0;
   m.roughness = t.metal_rough.rgba[4 * p + 1] / 255.0;
@@ -451,7 +453,7 @@ TexturedMaterial convert_textured(const std::optional<TextureUse>& diffuse, cons
     Out& o = out[u];
     for (int c = 0; c < 3; ++c) {
       o.base[c] = linear_to_srgb8(m.base_color[c]);
-      o.f0[c] = linear_to_srgb8(std::min(kOutIorF0 * m.specular_color[c], 1.0));
+      o.f0[c] = linear_to_srgb8(std::min(out_f0_scale() * m.specular_color[c], 1.0));
     }
     o.rough = static_cast<std::uint8_t>(std::lround(std::clamp(m.roughness, 0.0, 1.0) * 255.0));
     o.spec = static_cast<std::uint8_t>(std::lround(std::clamp(m.specular, 0.0, 1.0) * 255.0));
@@ -644,7 +646,7 @@ void run_gltf(const GltfOptions& o) {
       m["extensions"].erase(kSpecGloss);
       m["extensions"]["KHR_materials_specular"] = {{"specularFactor", 1.0},
                                                    {"specularTexture", add_texture("specular", t.specular)},
-                                                   {"specularColorFactor", rgb_json(Rgb{1.0, 1.0, 1.0} * (1.0 / kOutIorF0))},
+                                                   {"specularColorFactor", rgb_json(Rgb{1.0, 1.0, 1.0} * (1.0 / out_f0_scale()))},
                                                    {"specularColorTexture", add_texture("specular_color", t.specular_color)}};
       m["extensions"]["KHR_materials_ior"] = {{"ior", 1000.0}};
       nlohmann::json r = {{"index", j.index},

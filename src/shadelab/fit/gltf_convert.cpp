@@ -11,6 +11,7 @@
 #include <mutex>
 
 #include "shadelab/analysis/albedo.h"
+#include "shadelab/brdf/fresnel.h"
 #include "shadelab/core/constants.h"
 #include "shadelab/numeric/quadrature.h"
 #include "shadelab/sampling/warp.h"
@@ -23,11 +24,8 @@ constexpr double kIor = 1000.0;  // PR #1719's "infinite" ior
 constexpr int kDims = 9;         // base_color (3), metallic, roughness, specular, specular_color (3)
 constexpr double kStopRms = 1e-7;  // the fit stops below this RMS (the fit quadrature's own accuracy)
 
-// f0 = ((ior - 1)/(ior + 1))^2 specular_color (KHR_materials_ior, KHR_materials_specular).
-double ior_f0(double ior) {
-  const double q = (ior - 1.0) / (ior + 1.0);
-  return q * q;
-}
+// f0 = ((ior - 1)/(ior + 1))^2 specular_color (KHR_materials_ior, KHR_materials_specular; brdf/fresnel.h).
+double ior_f0(double ior) { return f0_from_ior(ior); }
 
 double specular_color_max() { return 1.0 / ior_f0(kIor); }
 
