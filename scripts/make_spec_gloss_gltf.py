@@ -10,17 +10,28 @@
                               4 plain     metallic-roughness only (left as it is)
                             extensionsUsed and extensionsRequired name KHR_materials_pbrSpecularGlossiness.
   spec_gloss.glb            the same glTF as a GLB (JSON chunk + BIN chunk)
-  spec_gloss_textured.gltf  material 1 with a diffuseTexture (a 1 x 1 PNG data URI): refused by the converter
+  spec_gloss_textured.gltf  textured spec-gloss (8 x 8 PNG files beside it, every texel distinct):
+                              0 textured  diffuseTexture sg_diffuse.png and specularGlossinessTexture sg_specgloss.png,
+                                          both with texCoord 0 and the same KHR_texture_transform and sampler;
+                                          factors diffuse (0.9, 1, 1, 1), specular (1, 1, 1), glossiness 0.95.
+                                          Rows 0-1: metals (black diffuse; gold, silver, copper, iron specular),
+                                          rows 2-5: plastics (specular 0.04, coloured diffuse), rows 6-7: a tinted
+                                          specular (0.2, 0.3, 0.1) over a mid diffuse; glossiness rises along x.
+                                          Diffuse alpha 128 in column 7, 255 elsewhere.
+                              1 diffuse   diffuseTexture sg_diffuse.png only; specular 0.04, glossiness 0.6
+                              2 plain     metallic-roughness only (left as it is)
+  spec_gloss_textured.glb   the same with the two PNGs in its BIN chunk
+  sg_diffuse.png, sg_specgloss.png   the 8 x 8 RGBA textures
 
-    /usr/bin/python3 scripts/make_spec_gloss_gltf.py [OUT_DIR]
+    /usr/bin/python3 scripts/make_spec_gloss_gltf.py [-h] [OUT_DIR]
 
 Everything is made here from its own numbers; the files are the same bytes on every run.
 """
+import argparse
 import base64
 import json
 import os
 import struct
-import sys
 import zlib
 
 MATERIALS = [
@@ -38,16 +49,50 @@ def geometry():
     return positions + indices
 
 
-def png_1x1(rgb):
-    """A 1 x 1 8-bit RGB PNG."""
+def png_rgba(width, height, pixels):
+    """An 8-bit RGBA PNG (colour type 6) of `pixels`, rows of (r, g, b, a) tuples, top row first."""
     def chunk(kind, data):
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
-    raw = b"\x00" + bytes(rgb)
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 1, 1, 8, 2, 0, 0, 0))
+    raw = b"".join(b"\x00" + bytes(v for px in row for v in px) for row in pixels)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
             + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
-def document(buffer_uri, buffer_length, textured=False):
+def srgb8(linear):
+    """The 8-bit sRGB code of a linear value (IEC 61966-2-1)."""
+    v = 12.92 * linear if linear <= 0.0031308 else 1.055 * linear ** (1 / 2.4) - 0.055
+    return int(round(min(max(v, 0.0), 1.0) * 255))
+
+
+METALS = [(1.0, 0.766, 0.336), (0.972, 0.960, 0.915), (0.955, 0.638, 0.538), (0.56, 0.57, 0.58)]  # the README's gold; silver, copper, iron
+SIZE = 8
+
+
+def textures():
+    """The 8 x 8 diffuse (RGBA, sRGB) and specular-glossiness (sRGB RGB, linear A) texels, row y, column x."""
+    diffuse, specgloss = [], []
+    for y in range(SIZE):
+        drow, srow = [], []
+        for x in range(SIZE):
+            gloss = 40 + 30 * x + y  # codes 40 .. 257 - 8: distinct per texel, glossiness 0.16 .. 0.98
+            if y < 2:  # metals: black diffuse
+                d = (0.0, 0.0, 0.0)
+                spec = METALS[(x + 4 * y) % 4]
+            elif y < 6:  # plastics
+                d = (0.1 + 0.1 * x, 0.8 - 0.1 * (y - 2), 0.05 + 0.1 * (y - 2))
+                spec = (0.04, 0.04, 0.04)
+            else:  # a tinted specular over a mid diffuse
+                d = (0.3 + 0.05 * x, 0.5, 0.7 - 0.05 * (y - 6))
+                spec = (0.2, 0.3, 0.1)
+            alpha = 128 if x == SIZE - 1 else 255
+            drow.append(tuple(srgb8(c) for c in d) + (alpha,))
+            srow.append(tuple(srgb8(c) for c in spec) + (min(gloss, 255),))
+        diffuse.append(drow)
+        specgloss.append(srow)
+    return diffuse, specgloss
+
+
+def document(buffer_uri, buffer_length):
     materials = [{"name": name, "extensions": {"KHR_materials_pbrSpecularGlossiness": dict(ext)}}
                  for name, ext in MATERIALS]
     materials.append({"name": "plain", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0],
@@ -71,11 +116,31 @@ def document(buffer_uri, buffer_length, textured=False):
     }
     if buffer_uri is not None:
         doc["buffers"][0]["uri"] = buffer_uri
-    if textured:
-        uri = "data:image/png;base64," + base64.b64encode(png_1x1((200, 120, 60))).decode("ascii")
-        doc["images"] = [{"uri": uri}]
-        doc["textures"] = [{"source": 0}]
-        doc["materials"][1]["extensions"]["KHR_materials_pbrSpecularGlossiness"]["diffuseTexture"] = {"index": 0}
+    return doc
+
+
+def textured_document(buffer_uri, buffer_length, images):
+    """The textured file: `images` are the two image entries (uris or bufferViews)."""
+    transform = {"offset": [0.25, 0.0], "scale": [2.0, 2.0]}
+    info = {"texCoord": 0, "extensions": {"KHR_texture_transform": transform}}
+    materials = [
+        {"name": "textured", "extensions": {"KHR_materials_pbrSpecularGlossiness": {
+            "diffuseFactor": [0.9, 1.0, 1.0, 1.0], "specularFactor": [1.0, 1.0, 1.0], "glossinessFactor": 0.95,
+            "diffuseTexture": dict(info, index=0), "specularGlossinessTexture": dict(info, index=1)}}},
+        {"name": "diffuse", "extensions": {"KHR_materials_pbrSpecularGlossiness": {
+            "specularFactor": [0.04, 0.04, 0.04], "glossinessFactor": 0.6, "diffuseTexture": {"index": 0}}}},
+        {"name": "plain", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0,
+                                                   "roughnessFactor": 0.5}},
+    ]
+    doc = document(buffer_uri, buffer_length)
+    doc["materials"] = materials
+    doc["scenes"] = [{"nodes": [0, 1, 2]}]
+    doc["nodes"] = doc["nodes"][:3]
+    doc["meshes"] = doc["meshes"][:3]
+    doc["extensionsUsed"] = ["KHR_materials_pbrSpecularGlossiness", "KHR_texture_transform"]
+    doc["samplers"] = [{"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}]
+    doc["images"] = images
+    doc["textures"] = [{"source": 0, "sampler": 0}, {"source": 1, "sampler": 0}]
     return doc
 
 
@@ -88,7 +153,9 @@ def glb(doc, binary):
 
 
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else "."
+    parser = argparse.ArgumentParser(description="Writes the test files of `shadelab convert gltf` (docs/conversions.md).")
+    parser.add_argument("out_dir", nargs="?", default=".", metavar="OUT_DIR", help="the folder to write into (made if absent)")
+    out = parser.parse_args().out_dir
     os.makedirs(out, exist_ok=True)
     data = geometry()
     uri = "data:application/octet-stream;base64," + base64.b64encode(data).decode("ascii")
@@ -96,8 +163,26 @@ def main():
         json.dump(document(uri, len(data)), f, indent=1)
     with open(os.path.join(out, "spec_gloss.glb"), "wb") as f:
         f.write(glb(document(None, len(data)), data))
+    diffuse, specgloss = textures()
+    pngs = [png_rgba(SIZE, SIZE, diffuse), png_rgba(SIZE, SIZE, specgloss)]
+    for name, png in zip(("sg_diffuse.png", "sg_specgloss.png"), pngs):
+        with open(os.path.join(out, name), "wb") as f:
+            f.write(png)
     with open(os.path.join(out, "spec_gloss_textured.gltf"), "w") as f:
-        json.dump(document(uri, len(data), textured=True), f, indent=1)
+        json.dump(textured_document(uri, len(data), [{"uri": "sg_diffuse.png"}, {"uri": "sg_specgloss.png"}]), f, indent=1)
+    # The .glb: geometry (44 bytes), then each PNG at a 4-byte aligned offset.
+    binary = bytearray(data)
+    views = []
+    for png in pngs:
+        binary += b"\x00" * (-len(binary) % 4)
+        views.append({"buffer": 0, "byteOffset": len(binary), "byteLength": len(png)})
+        binary += png
+    binary += b"\x00" * (-len(binary) % 4)
+    doc = textured_document(None, len(binary), [{"bufferView": 2, "mimeType": "image/png"},
+                                                 {"bufferView": 3, "mimeType": "image/png"}])
+    doc["bufferViews"] += views
+    with open(os.path.join(out, "spec_gloss_textured.glb"), "wb") as f:
+        f.write(glb(doc, bytes(binary)))
 
 
 if __name__ == "__main__":

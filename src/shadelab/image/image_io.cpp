@@ -1414,6 +1414,45 @@ Result<Image> read_image(const fs::path& path, ReadInfo* info, std::uint64_t bud
   }
 }
 
+Result<Rgba8Image> decode_rgba8(const std::vector<unsigned char>& bytes, const std::string& name) {
+  const fs::path path(name);
+  static constexpr unsigned char png_signature[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};  // PNG spec 5.2
+  const bool png = bytes.size() >= 8 && std::equal(png_signature, png_signature + 8, bytes.begin());
+  const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;  // JPEG SOI + marker
+  if (!png && !jpeg) return read_error(path, "not a PNG or JPEG image");
+  if (bytes.size() > static_cast<std::size_t>(INT_MAX)) return read_error(path, "image is too large (over 2 GiB)");
+  if (png) {
+    if (auto ok = check_png_chunks(path, bytes); !ok) return ok.error();
+  }
+  if (auto ok = check_stb_size(path, bytes, png ? "PNG" : "JPEG"); !ok) return ok.error();
+  if (png) {
+    if (auto ok = check_palette_indices(path, bytes); !ok) return ok.error();
+  }
+  int w = 0;
+  int h = 0;
+  int n = 0;
+  std::unique_ptr<stbi_uc, StbiFree> pixels(
+      stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &w, &h, &n, 4));
+  if (!pixels) return read_error(path, std::string("corrupt or truncated ") + (png ? "PNG" : "JPEG") + " (" + stb_reason() + ")");
+  Rgba8Image image;
+  image.width = w;
+  image.height = h;
+  image.rgba.assign(pixels.get(), pixels.get() + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
+  return image;
+}
+
+Result<std::vector<char>> encode_png_rgba8(const Rgba8Image& image, const fs::path& path) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.rgba.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4) {
+    return write_error(path, "RGBA image of inconsistent size");
+  }
+  std::vector<char> bytes;
+  if (stbi_write_png_to_func(append_bytes, &bytes, image.width, image.height, 4, image.rgba.data(), image.width * 4) == 0) {
+    return write_error(path, "cannot encode PNG data");
+  }
+  return bytes;
+}
+
 Result<bool> write_file_atomically(const fs::path& path, const std::vector<char>& bytes) {
   try {
     return write_atomically(path, bytes, "write_file_atomically");

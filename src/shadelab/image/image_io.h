@@ -123,6 +123,20 @@ struct WriteOptions {
   PngSamples png_samples = PngSamples::srgb;
 };
 
+// An 8-bit RGBA image as its codes (row 0 at the top, 4 bytes a pixel): for textures whose codes matter as they
+// are (the glTF material conversion, `convert gltf`).
+struct Rgba8Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba;
+};
+// Decodes a PNG (with read_image's checks: chunks, CRC-independent truncation, palette indices, size) or a JPEG
+// (stb_image) held in memory; grey and RGB gain A = 255, a 16-bit PNG is reduced to 8 bits by stb_image. The Error
+// names `name` (a file, or where in a glTF the bytes are).
+Result<Rgba8Image> decode_rgba8(const std::vector<unsigned char>& bytes, const std::string& name);
+// The bytes of an 8-bit RGBA PNG of the codes (no colour conversion), for write_files_atomically.
+Result<std::vector<char>> encode_png_rgba8(const Rgba8Image& image, const std::filesystem::path& path);
+
 // Writes `bytes` to `path` atomically: to a new temporary file in the same directory (created exclusively,
 // flushed with fsync), renamed over `path` only when complete. On failure the temporary is removed, an
 // existing `path` is untouched, and the Error names `path`. write_image uses it; so can any other writer.
