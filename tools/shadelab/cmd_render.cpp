@@ -62,7 +62,7 @@ struct RenderCliOptions {
   // Which of the four were given (a value given is checked against its range; there is no sentinel value).
   bool spp_given = false, threads_given = false, max_depth_given = false, seed_given = false;
   double exposure = 0.0;
-  bool filmic = false;
+  ViewCliOptions view;  // --view, --look, --ocio-config, --filmic
   bool aov = false;
   bool no_png = false;
   std::string mode = "reference";
@@ -192,6 +192,7 @@ void run_render(const RenderCliOptions& o) {
   if (o.threads_given && o.threads < 0) throw UsageError(fmt::format("--threads: {} must be >= 0", o.threads));
   check_range("--threads", o.threads_given, o.threads, 0, max_render_threads);
   if (!std::isfinite(o.exposure)) throw UsageError("--exposure: must be finite");
+  const DisplayView view = parse_view_options(o.view, ViewTransform::standard);
   Scene scene = o.scene.empty() ? built_in_scene() : unwrap(load_scene(o.scene));
   for (const std::string& w : scene.warnings) std::cerr << "shadelab: warning: " << w << '\n';  // one line each
   if (o.seed_given) scene.settings.seed = parse_seed("--seed", o.seed);
@@ -288,7 +289,7 @@ void run_render(const RenderCliOptions& o) {
     check_outputs(scene_inputs(scene), outputs);
   }
   film.exposure_stops = o.exposure;
-  film.curve = o.filmic ? ToneCurve::filmic : ToneCurve::clamp;
+  film.view = view;
   film.aovs = o.aov;
   work_begins();
 
@@ -359,7 +360,7 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_option("--max-depth", o->max_depth, "path vertices after the camera (default: the scene's)");
   sub->add_option("--seed", o->seed, "random seed, 0 to 2^64 - 1 (default: the scene's)");
   sub->add_option("--exposure", o->exposure, "PNG exposure in stops")->capture_default_str();
-  sub->add_flag("--filmic", o->filmic, "PNG through the ACES filmic curve instead of clamping");
+  add_view_options(sub, o->view, "standard", true);
   sub->add_flag("--aov", o->aov, "also write albedo, normal and depth EXRs");
   sub->add_option("--mode", o->mode, "reference (the path tracer) or game (the game shading equation)")->capture_default_str();
   sub->add_option("--sampling", o->sampling, "reference mode: mis, brdf or light sampling")->capture_default_str();
