@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 #include <string>
 
 #include "cli_run.h"
@@ -40,15 +41,16 @@ int max_code_difference(const fs::path& png, const fs::path& exr, const std::str
 }
 
 // A 64 x 64 saturated orange sphere under a bright point light and a blue sky: highlights above 1 in every view.
-std::string scene() {
-  const fs::path p = temp_dir() / "view_scene.json";
+std::string scene(const std::string& name = "view_scene", const std::string& kd = "[0.9, 0.35, 0.05]",
+                  const std::string& sky = "[0.1, 0.2, 0.6]") {
+  const fs::path p = temp_dir() / (name + ".json");
   std::ofstream(p) << R"({"units": "radiometric",
   "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40, "width": 64, "height": 64},
   "render": {"spp": 1, "max_depth": 2},
-  "materials": {"m": {"model": "blinn-phong", "params": {"kd": [0.9, 0.35, 0.05], "ks": 0.3, "n": 40}}},
+  "materials": {"m": {"model": "blinn-phong", "params": {"kd": )" << kd << R"(, "ks": 0.3, "n": 40}}},
   "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}],
   "lights": [{"type": "point", "position": [2, 2, 3], "color": [1, 1, 1], "power": 2000}],
-  "environment": {"uniform": [0.1, 0.2, 0.6]}})";
+  "environment": {"uniform": )" << sky << "}}";
   return p.string();
 }
 
@@ -66,6 +68,41 @@ TEST(CliView, RenderPngIsTheExrThroughTheView) {
     ASSERT_EQ(s.code, 0) << s.err;
     EXPECT_LE(max_code_difference(png, temp_dir() / "o.exr", "agx", 1.5), 1) << args;
   }
+}
+
+// --working-space acescg: a scene of greys (grey material, grey lights, grey environment) renders the same in both
+// spaces (greys are the same in both and their products commute with the conversion), a coloured one does not (the
+// products of colours differ by space), and the files stay linear Rec.709.
+TEST(CliView, WorkingSpaceAcescg) {
+  const std::string grey = scene("grey", "0.6", "0.3"), colour = scene();
+  const auto max_abs = [](const fs::path& a, const fs::path& b) {
+    auto x = shadelab::read_image(a), y = shadelab::read_image(b);
+    EXPECT_TRUE(x && y);
+    double m = 0.0;
+    for (std::size_t i = 0; x && y && i < x->data.size(); ++i) m = std::max(m, double(std::abs(x->data[i] - y->data[i])));
+    return m;
+  };
+  for (const auto& [name, file] : {std::pair{"grey", grey}, std::pair{"colour", colour}}) {
+    const fs::path a = temp_dir() / (std::string(name) + "_rec709.exr"), b = temp_dir() / (std::string(name) + "_acescg.exr");
+    ASSERT_EQ(run("render " + file + " --no-png --out " + a.string()).code, 0);
+    const auto r = run("render " + file + " --no-png --working-space acescg --out " + b.string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    const double d = max_abs(a, b);
+    if (std::string(name) == "grey") {
+      EXPECT_LT(d, 1e-5) << "greys differ by working space";
+    } else {
+      EXPECT_GT(d, 1e-3) << "the working space changed nothing";
+      // A corner sees the sky alone: converted in and back, it is the scene's (0.1, 0.2, 0.6) in the file.
+      const auto img = shadelab::read_image(b);
+      ASSERT_TRUE(img);
+      const shadelab::Rgb c = img->at(0, 0);
+      EXPECT_NEAR(c.r, 0.1, 1e-5);
+      EXPECT_NEAR(c.g, 0.2, 1e-5);
+      EXPECT_NEAR(c.b, 0.6, 1e-5);
+    }
+  }
+  expect_usage_error("render " + grey + " --working-space p3", "--working-space");
+  expect_usage_error("render " + grey + " --working-space acescg --shard 1/2 --out p.exr", "--working-space");
 }
 
 TEST(CliView, BadValuesNameTheOption) {
