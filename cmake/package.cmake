@@ -83,6 +83,8 @@ install(FILES ${PROJECT_BINARY_DIR}/package/shadelab.pc DESTINATION ${pc_dir} CO
 
 if(TARGET shadelab_cli)
   install(TARGETS shadelab_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT cli)
+  # The OpenColorIO config of the built-in views (docs/color.md): --view OCIO:<prefix>/share/shadelab/ocio/shadelab.ocio:sRGB:AgX
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/share/ocio/ DESTINATION ${CMAKE_INSTALL_DATADIR}/shadelab/ocio COMPONENT cli)
 endif()
 
 # Everything `cmake --install` copies, and nothing else (no tests, benchmarks or WebAssembly): the target

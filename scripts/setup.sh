@@ -9,6 +9,8 @@ packages=(
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libopenexr-dev libstb-dev libtbb-dev
   libnlopt-dev
+  libopencolorio-dev
+  opencolorio-tools
   libcairo2-dev fonts-dejavu-core
   libembree-dev libtinyobjloader-dev libtinygltf-dev
   blender-data

@@ -181,4 +181,40 @@ std::vector<CommandEntry>& command_registry() {
   return entries;
 }
 
+void add_view_options(CLI::App* sub, ViewCliOptions& o, const std::string& default_view, bool filmic_flag) {
+  sub->add_option("--view", o.view,
+                  "PNG view transform: standard (clamp), filmic, pbr-neutral (Khronos PBR Neutral), agx (AgX Base), aces "
+                  "(Hill's ACES fit) or OCIO:<config>:<display>:<view> (docs/color.md; default: " + default_view + ")");
+  sub->add_option("--look", o.look, "OpenColorIO look(s) applied before an OCIO view (OCIO's list syntax)");
+  sub->add_option("--ocio-config", o.ocio_config, "OpenColorIO config for --view OCIO::<display>:<view> (default: $OCIO)");
+  if (filmic_flag) sub->add_flag("--filmic", o.filmic, "PNG through the filmic curve (the same as --view filmic)");
+}
+
+DisplayView parse_view_options(const ViewCliOptions& o, ViewTransform default_view) {
+  DisplayView v;
+  v.transform = default_view;
+  if (!o.view.empty()) {
+    auto parsed = parse_view(o.view);
+    if (!parsed) throw UsageError("--view: " + parsed.error().message);
+    v = *parsed;
+    if (o.filmic && v.transform != ViewTransform::filmic) throw UsageError("--filmic: conflicts with --view " + printable(o.view));
+  } else if (o.filmic) {
+    v.transform = ViewTransform::filmic;
+  }
+  if (v.transform != ViewTransform::ocio) {
+    if (!o.look.empty()) throw UsageError("--look: looks are OpenColorIO's; give an OCIO view (--view OCIO:<config>:<display>:<view>)");
+    if (!o.ocio_config.empty()) throw UsageError("--ocio-config: needs an OCIO view (--view OCIO::<display>:<view>)");
+    return v;
+  }
+  if (!o.ocio_config.empty()) {
+    if (!v.ocio_config.empty()) throw UsageError("--ocio-config: the --view already names a config (" + printable(v.ocio_config) + ")");
+    v.ocio_config = o.ocio_config;
+  }
+  v.looks = o.look;
+  Image probe(1, 1);
+  probe.set(0, 0, Rgb::gray(0.18));
+  if (auto ok = apply_view(probe, 0.0, v); !ok) throw UsageError("--view: " + ok.error().message);
+  return v;
+}
+
 }  // namespace shadelab::cli

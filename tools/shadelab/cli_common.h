@@ -16,6 +16,7 @@
 #include "shadelab/color/rgb.h"
 #include "shadelab/core/error.h"
 #include "shadelab/core/vec.h"
+#include "shadelab/render/film.h"
 #include "shadelab/scene/scene.h"
 
 namespace shadelab::cli {
@@ -24,6 +25,23 @@ namespace shadelab::cli {
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// The display options of every command that writes an image for people (render, merge, sheet, report; docs/color.md):
+// --view standard|filmic|pbr-neutral|agx|aces|OCIO:<config>:<display>:<view>, --look (OCIO looks), --ocio-config
+// (the config of an OCIO view given as OCIO::<display>:<view>, instead of $OCIO). `filmic` is the older --filmic
+// flag where a command has it (an alias of --view filmic).
+struct ViewCliOptions {
+  std::string view;
+  std::string look;
+  std::string ocio_config;
+  bool filmic = false;
+};
+// Adds --view, --look and --ocio-config (and --filmic when `filmic_flag`) to `sub`.
+void add_view_options(CLI::App* sub, ViewCliOptions& o, const std::string& default_view, bool filmic_flag);
+// The one parse and check of those options (UsageError naming the option: exit 2): the view, the default when
+// --view is not given; an OCIO view is tried once on one pixel, so a bad config, display, view or look is an
+// error before any work.
+DisplayView parse_view_options(const ViewCliOptions& o, ViewTransform default_view);
 
 template <typename T>
 T unwrap(Result<T> r) {

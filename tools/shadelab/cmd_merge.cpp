@@ -22,7 +22,7 @@ struct MergeCliOptions {
   std::string out;
   std::string png;
   double exposure = 0.0;
-  bool filmic = false;
+  ViewCliOptions view;  // --view, --look, --ocio-config, --filmic
   bool check = false;
   bool json = false;
   bool progress = false;
@@ -56,6 +56,7 @@ void run_merge(const MergeCliOptions& o) {
   require_extension("--out", o.out, {".exr"}, "the linear image");
   if (!o.png.empty()) require_extension("--png", o.png, {".png"}, "the tone-mapped image");
   if (!std::isfinite(o.exposure)) throw UsageError("--exposure: must be finite");
+  const DisplayView view = parse_view_options(o.view, ViewTransform::standard);
   {
     std::vector<NamedPath> inputs;
     for (const auto& p : parts) inputs.push_back({"PART", p});
@@ -72,7 +73,7 @@ void run_merge(const MergeCliOptions& o) {
   film.exr = o.out;
   if (!o.png.empty()) film.png = o.png;
   film.exposure_stops = o.exposure;
-  film.curve = o.filmic ? ToneCurve::filmic : ToneCurve::clamp;
+  film.view = view;
   const auto written = unwrap(write_film(merged->result, film));
   const ShardInfo& f = merged->status.first;
   if (o.json) {
@@ -99,7 +100,7 @@ void add_merge_command(CLI::App& app, Command& command) {
   sub->add_option("--out", o->out, "linear EXR output");
   sub->add_option("--png", o->png, "tone-mapped PNG output (default: none)");
   sub->add_option("--exposure", o->exposure, "PNG exposure in stops")->capture_default_str();
-  sub->add_flag("--filmic", o->filmic, "PNG through the ACES filmic curve instead of clamping");
+  add_view_options(sub, o->view, "standard", true);
   sub->add_flag("--check", o->check, "only report the shards present and missing (exit 1 while any is missing)");
   sub->add_flag("--json", o->json, "machine-readable summary");
   sub->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal");

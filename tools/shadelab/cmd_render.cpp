@@ -8,14 +8,19 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <variant>
 
 #include "cli_common.h"
 #include "progress.h"
+#include "shadelab/brdf/params.h"
+#include "shadelab/color/ocio.h"
+#include "shadelab/core/text.h"
 #include "shadelab/envmap/specular/split_sum_taps.h"
 #include "shadelab/render/film.h"
 #include "shadelab/render/game_renderer.h"
@@ -27,6 +32,82 @@
 namespace shadelab::cli {
 
 namespace {
+
+namespace fs = std::filesystem;
+
+// The repo's OpenColorIO config (share/ocio/shadelab.ocio): installed beside the binary
+// (<prefix>/share/shadelab/ocio), else the source tree this binary was built from.
+std::string repo_ocio_config() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path installed = exe.parent_path() / ".." / "share" / "shadelab" / "ocio" / "shadelab.ocio";
+    if (fs::is_regular_file(installed, ec)) return installed.lexically_normal().string();
+  }
+  return SHADELAB_REPO_OCIO_CONFIG;
+}
+
+// Converts every colour of the scene between OCIO colour spaces of `config` (--working-space acescg: Linear Rec.709
+// -> ACEScg): the environment (uniform, lat-long, sky), the colour textures (not the data ones), the materials'
+// colour parameters (not `ior` and `k`: per-channel optical constants, not tristimulus values) and emission, the
+// lights. Materials are built again from their converted parameters.
+class SpaceConversion {
+ public:
+  SpaceConversion(std::string config, std::string from, std::string to)
+      : m_config(std::move(config)), m_from(std::move(from)), m_to(std::move(to)) {}
+  void image(Image& img) const {
+    unwrap(ocio::convert(m_config, m_from, m_to, img.data.data(), img.pixel_count()));
+  }
+  Rgb rgb(const Rgb& c) const {
+    float p[3] = {static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)};
+    unwrap(ocio::convert(m_config, m_from, m_to, p, 1));
+    return {static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2])};
+  }
+  void scene(Scene& s) const {
+    Environment& e = s.environment;
+    e.uniform = rgb(e.uniform);
+    if (!e.latlong.empty()) image(e.latlong);
+    e.sky.sun_irradiance = rgb(e.sky.sun_irradiance);
+    e.sky.zenith = rgb(e.sky.zenith);
+    e.sky.horizon = rgb(e.sky.horizon);
+    e.sky.ground = rgb(e.sky.ground);
+    for (Texture& t : s.textures) {
+      if (!t.data) image(t.image);
+    }
+    for (Material& m : s.materials) {
+      m.emission = rgb(m.emission);
+      if (m.model.empty()) continue;
+      const ModelInfo* info = find_brdf_model(m.model);
+      if (info == nullptr) continue;
+      for (auto& [name, value] : m.params) {
+        if (name == "ior" || name == "k") continue;
+        for (const ParamSpec& spec : info->params) {
+          if (spec.name != name || spec.kind != ParamKind::color) continue;
+          double v[3] = {0, 0, 0};
+          if (std::sscanf(value.c_str(), "%lf,%lf,%lf", &v[0], &v[1], &v[2]) == 3) {
+            const Rgb c = rgb(Rgb{v[0], v[1], v[2]});
+            value = fmt::format("{:.9g},{:.9g},{:.9g}", c.r, c.g, c.b);
+          }  // a single number is a grey, which both spaces share
+        }
+      }
+      m.brdf = unwrap(make_brdf(m.model, m.params));
+    }
+    for (SceneLight& l : s.lights) {
+      std::visit([&](auto& light) { convert_light(light); }, l);
+    }
+  }
+
+ private:
+  void convert_light(DirectionalLight& l) const { l.irradiance = rgb(l.irradiance); }
+  void convert_light(PointLight& l) const { l.intensity = rgb(l.intensity); }
+  void convert_light(SpotLight& l) const { l.intensity = rgb(l.intensity); }
+  void convert_light(SphereLight& l) const { l.radiance = rgb(l.radiance); }
+  void convert_light(HemisphereLight& l) const {
+    l.sky = rgb(l.sky);
+    l.ground = rgb(l.ground);
+  }
+  std::string m_config, m_from, m_to;
+};
 
 std::atomic<bool> g_interrupted{false};
 std::atomic<int> g_signal{0};
@@ -62,7 +143,7 @@ struct RenderCliOptions {
   // Which of the four were given (a value given is checked against its range; there is no sentinel value).
   bool spp_given = false, threads_given = false, max_depth_given = false, seed_given = false;
   double exposure = 0.0;
-  bool filmic = false;
+  ViewCliOptions view;  // --view, --look, --ocio-config, --filmic
   bool aov = false;
   bool no_png = false;
   std::string mode = "reference";
@@ -84,6 +165,7 @@ struct RenderCliOptions {
   bool json = false;
   bool progress = false;
   std::string shard;  // "I/N": render one part for `shadelab merge` (docs/scale-out.md)
+  std::string working_space = "linear-rec709";  // or acescg (docs/color.md)
   std::string split = "samples";
   bool split_given = false;
 };
@@ -192,9 +274,23 @@ void run_render(const RenderCliOptions& o) {
   if (o.threads_given && o.threads < 0) throw UsageError(fmt::format("--threads: {} must be >= 0", o.threads));
   check_range("--threads", o.threads_given, o.threads, 0, max_render_threads);
   if (!std::isfinite(o.exposure)) throw UsageError("--exposure: must be finite");
+  if (o.working_space != "linear-rec709" && o.working_space != "acescg") {
+    throw UsageError("--working-space: '" + printable(o.working_space) + "' is not one of linear-rec709 | acescg");
+  }
+  const bool acescg = o.working_space == "acescg";
+  if (acescg && !o.shard.empty()) throw UsageError("--working-space acescg: not with --shard (merge would not convert back)");
+  const std::string space_config = acescg ? repo_ocio_config() : std::string();
+  const DisplayView view = parse_view_options(o.view, ViewTransform::standard);
   Scene scene = o.scene.empty() ? built_in_scene() : unwrap(load_scene(o.scene));
   for (const std::string& w : scene.warnings) std::cerr << "shadelab: warning: " << w << '\n';  // one line each
   if (o.seed_given) scene.settings.seed = parse_seed("--seed", o.seed);
+  if (acescg) {
+    try {
+      SpaceConversion(space_config, "Linear Rec.709", "ACEScg").scene(scene);
+    } catch (const UsageError& e) {
+      throw UsageError(std::string("--working-space acescg: ") + e.what());
+    }
+  }
   RenderOptions ro;
   ro.spp = o.spp_given ? o.spp : -1;
   ro.max_depth = o.max_depth_given ? o.max_depth : -1;
@@ -288,7 +384,7 @@ void run_render(const RenderCliOptions& o) {
     check_outputs(scene_inputs(scene), outputs);
   }
   film.exposure_stops = o.exposure;
-  film.curve = o.filmic ? ToneCurve::filmic : ToneCurve::clamp;
+  film.view = view;
   film.aovs = o.aov;
   work_begins();
 
@@ -301,6 +397,11 @@ void run_render(const RenderCliOptions& o) {
   auto result = o.mode == "game" ? render_game(scene, go) : render_scene(scene, ro);
   bar.finish();
   if (!result) throw UsageError(scene.source + ": " + result.error().message);
+  if (acescg) {  // the files stay in shadelab's working space, linear Rec.709
+    const SpaceConversion back(space_config, "ACEScg", "Linear Rec.709");
+    back.image(result->beauty);
+    if (!result->albedo.empty()) back.image(result->albedo);
+  }
   const auto written = unwrap(write_film(*result, film));
   handler.reset();  // after the files are complete
   const RenderStats& st = result->stats;
@@ -359,7 +460,11 @@ void add_render_command(CLI::App& app, Command& command) {
   sub->add_option("--max-depth", o->max_depth, "path vertices after the camera (default: the scene's)");
   sub->add_option("--seed", o->seed, "random seed, 0 to 2^64 - 1 (default: the scene's)");
   sub->add_option("--exposure", o->exposure, "PNG exposure in stops")->capture_default_str();
-  sub->add_flag("--filmic", o->filmic, "PNG through the ACES filmic curve instead of clamping");
+  add_view_options(sub, o->view, "standard", true);
+  sub->add_option("--working-space", o->working_space,
+                  "linear-rec709, or acescg: the scene's colours (HDRIs, colour textures, material colours, lights) "
+                  "converted to ACEScg by OpenColorIO (share/ocio/shadelab.ocio), rendered there, and the outputs "
+                  "converted back to linear Rec.709 (docs/color.md)")->capture_default_str();
   sub->add_flag("--aov", o->aov, "also write albedo, normal and depth EXRs");
   sub->add_option("--mode", o->mode, "reference (the path tracer) or game (the game shading equation)")->capture_default_str();
   sub->add_option("--sampling", o->sampling, "reference mode: mis, brdf or light sampling")->capture_default_str();

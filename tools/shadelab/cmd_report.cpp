@@ -57,6 +57,8 @@ struct ReportOptions {
   int width = 0;
   bool ibl_error = false;
   bool json = false;
+  double exposure = 0.0;
+  ViewCliOptions view;  // --view (default filmic, the report's view before --view), --look, --ocio-config
 };
 
 // Reference / game exit radiance of wrapped diffuse under a uniform environment: the hemisphere integral of
@@ -146,6 +148,8 @@ MaskedFigures masked(const Image& game, const Image& ref, const std::vector<int>
 
 void run_report(const ReportOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (!std::isfinite(o.exposure)) throw UsageError("--exposure: must be finite");
+  const DisplayView view = parse_view_options(o.view, ViewTransform::filmic);
   Scene scene = o.scene.empty() ? built_in_scene() : unwrap(load_scene(o.scene));
   for (const std::string& w : scene.warnings) std::cerr << "shadelab: warning: " << w << '\n';  // one line each
   if (o.spp < 1) throw UsageError(fmt::format("--spp: {} must be >= 1", o.spp));
@@ -213,7 +217,7 @@ void run_report(const ReportOptions& o) {
     const Heatmap heat = unwrap(error_heatmap(game->beauty, ref->beauty, co));
     for (const auto& [img, name] : {std::pair{&ref->beauty, "reference"}, std::pair{&game->beauty, "game"}}) {
       const fs::path png = dir / (kind + "_" + name + ".png"), exr = dir / (kind + "_" + name + ".exr");
-      files.emplace_back(png, unwrap(encode_image(tonemap(*img, 0.0, ToneCurve::filmic), png)));
+      files.emplace_back(png, unwrap(encode_image(unwrap(apply_view(*img, o.exposure, view)), png)));
       files.emplace_back(exr, unwrap(encode_image(*img, exr)));
     }
     const fs::path heat_png = dir / (kind + "_heatmap.png");
@@ -353,6 +357,8 @@ void add_report_command(CLI::App& app, Command& command) {
   sub->add_flag("--ibl-error", o->ibl_error, "add the IBL error map of the scene's environment (shadelab ibl-error's "
                                             "defaults at --spp) as ibl_error/ and a section");
   sub->add_flag("--json", o->json, "machine-readable summary");
+  sub->add_option("--exposure", o->exposure, "exposure of the game and reference PNGs, in stops")->capture_default_str();
+  add_view_options(sub, o->view, "filmic", false);
   sub->callback([o, &command] { command.run = [o] { run_report(*o); }; });
 }
 

@@ -47,7 +47,7 @@ struct SheetOptions {
   long long seed = 1;
   int threads = 0;
   double exposure = 0.0;
-  bool filmic = false;
+  ViewCliOptions view;  // --view, --look, --ocio-config, --filmic
   std::string out = "sheet.png";
   std::string exr;
   std::string csv;
@@ -154,6 +154,7 @@ void run_sheet(const SheetOptions& o) {
   check_range("--threads", true, o.threads, 0, max_render_threads);
   check_outputs({{"--hdri", o.hdri}}, {{"--out", o.out}, {"--exr", o.exr}});
   if (!std::isfinite(o.exposure)) throw UsageError("--exposure: must be finite");
+  const DisplayView view = parse_view_options(o.view, ViewTransform::standard);
   if (!std::isfinite(o.intensity) || o.intensity < 0.0) {
     throw UsageError(fmt::format("--intensity: {} must be finite and >= 0", o.intensity));
   }
@@ -238,7 +239,7 @@ void run_sheet(const SheetOptions& o) {
     auto result = render_scene(scene, ro);
     if (!result) throw UsageError("sheet: " + cell.label + ": " + result.error().message);
     nonfinite += result->stats.nonfinite_samples;
-    const Image shown = tonemap(result->beauty, o.exposure, o.filmic ? ToneCurve::filmic : ToneCurve::clamp);
+    const Image shown = unwrap(apply_view(result->beauty, o.exposure, view));
     for (int y = 0; y < o.cell; ++y) {
       for (int x = 0; x < o.cell; ++x) {
         linear.set(cell.x + x, cell.y + y, result->beauty.at(x, y));
@@ -341,7 +342,7 @@ void add_sheet_command(CLI::App& app, Command& command) {
   sub->add_option("--seed", o->seed, "random seed")->capture_default_str();
   sub->add_option("--threads", o->threads, "threads, 0 = all cores")->capture_default_str();
   sub->add_option("--exposure", o->exposure, "PNG exposure in stops")->capture_default_str();
-  sub->add_flag("--filmic", o->filmic, "PNG through the ACES filmic curve instead of clamping");
+  add_view_options(sub, o->view, "standard", true);
   sub->add_option("--out", o->out, "tone-mapped sheet, .png")->capture_default_str();
   sub->add_option("--exr", o->exr, "also write the linear sheet, .exr");
   sub->add_option("--csv", o->csv, "write the layout (cell, model, parameters, pixel rectangle) as CSV");

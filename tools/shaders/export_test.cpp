@@ -196,6 +196,22 @@ TEST(Export, ConstantTablesCompileInEveryLanguage) {
   }
 }
 
+// kernels/display.sl's view transforms (the explorer's sphere runs them in WebGL 2) compile in every language.
+TEST(Export, ViewTransformsCompileInEveryLanguage) {
+  for (Lang lang : kLangs) {
+    auto text = kernel_section({"view_transform", "srgb8_code"}, lang);
+    ASSERT_TRUE(text.has_value()) << text.error().message;
+    const std::string expr = "view_transform(VIEW_AGX, 0.5, wi) + view_transform(VIEW_PBR_NEUTRAL, -1.0, wo) + "
+                             "view_transform(VIEW_ACES, 0.0, wi) * srgb8_code(wo.x)";
+    auto spirv = compile_compute(lang, compute_harness(lang, *text, expr), "display");
+    EXPECT_TRUE(spirv.has_value()) << lang_name(lang) << ": " << (spirv ? "" : spirv.error().message);
+    if (lang == Lang::essl) {
+      auto ok = validate_essl300(*text, expr, "display");
+      EXPECT_TRUE(ok.has_value()) << (ok ? "" : ok.error().message);
+    }
+  }
+}
+
 // glslang's reflection (-q) lists each block member's byte offset: an independent reading of the layout rules.
 TEST(Export, UniformOffsetsAgreeWithGlslangReflection) {
   for (const auto& m : brdf_models()) {

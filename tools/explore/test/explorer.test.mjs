@@ -268,6 +268,7 @@ async function renderReference(s, name) {
   const args = ['render', scene, '--mode', 'game', '--spp', String(s.sphere.spp), '--out', exr, '--png', png,
                 '--exposure', String(s.sphere.exposure)];
   if (s.sphere.tone === 'filmic') args.push('--filmic');
+  else if (s.sphere.tone !== 'clamp') args.push('--view', s.sphere.tone);  // the other views of kernels/display.sl
   if (s.sphere.lighting !== 'point') args.push('--env-size', String(s.sphere.env_size), '--specular-size', String(s.sphere.specular_size));
   cli(args);
   return pngPixels(png);
@@ -304,6 +305,8 @@ test('the WebGL 2 sphere matches the C++ game renderer within 1/255 mean absolut
     '?model=cook-torrance&kd=0.05&ks=1&d=beckmann&g=smith&f=schlick&f0=1,0.78,0.34&m=0.25&units=radiometric&light=20&light_pos=-2,3,4&exposure=-1',
     '?model=lambert&kd=0.8&units=game&light=1&light_pos=0,0,5&tone=filmic&exposure=1',
     '?model=ggx&units=game&light=2&light_pos=2,2,3',
+    '?model=lambert&kd=0.8,0.3,0.1&units=game&light=3&light_pos=0,0,5&tone=agx&exposure=1',
+    '?model=ggx&units=game&light=6&light_pos=2,2,3&tone=pbr-neutral',
   ];
   for (const [i, q] of views.entries()) {
     const s = await open(q);

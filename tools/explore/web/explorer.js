@@ -12,6 +12,9 @@
     { names: [], default: null, size: 0, specular_size: 0, message: 'no HDRI: environments.js did not load', problems: [] };
 
   // Query keys that are not model parameters, with their defaults (strings, as in the URL).
+  // The sphere's view transform (URL parameter `tone`): `shadelab render --view` names (clamp is standard, its older
+  // name) and kernels/display.sl's VIEW_* numbers, which the shader's view_transform takes.
+  const TONE_VIEWS = { clamp: 0, standard: 0, filmic: 1, 'pbr-neutral': 2, agx: 3, aces: 4 };
   const VIEW_DEFAULTS = {
     theta: '0,15,30,45,60,75,85,89',
     wi: '0,0,1',
@@ -123,7 +126,7 @@
       scale: () => { if (!['linear', 'log'].includes(view.scale)) throw new Error(`URL parameter 'scale': '${view.scale}' is not linear or log`); },
       cos: () => { if (!['0', '1'].includes(view.cos)) throw new Error(`URL parameter 'cos': '${view.cos}' is not 0 or 1`); },
       units: () => { if (!['game', 'radiometric'].includes(view.units)) throw new Error(`URL parameter 'units': '${view.units}' is not game or radiometric`); },
-      tone: () => { if (!['clamp', 'filmic'].includes(view.tone)) throw new Error(`URL parameter 'tone': '${view.tone}' is not clamp or filmic`); },
+      tone: () => { if (!(view.tone in TONE_VIEWS)) throw new Error(`URL parameter 'tone': '${view.tone}' is not one of ${Object.keys(TONE_VIEWS).join(', ')}`); },
       lighting: () => {
         if (!['point', 'hdri', 'both'].includes(view.lighting)) throw new Error(`URL parameter 'lighting': '${view.lighting}' is not point, hdri or both`);
         if (view.lighting !== 'point' && ENVIRONMENTS.names.length === 0) throw new Error(`URL parameter 'lighting': ${ENVIRONMENTS.message}`);
@@ -543,7 +546,7 @@ uniform int u_spp_side;
 uniform vec3 u_light_pos, u_light;
 uniform int u_units;
 uniform float u_exposure;
-uniform int u_tone;
+uniform int u_view;
 uniform int u_point_on, u_env_on;
 uniform int u_levels, u_ggx_levels, u_ggx_mapping;
 uniform float u_gloss_scale, u_gloss_bias;
@@ -633,9 +636,10 @@ ${iblEntry ? `    // SH9 diffuse and the split sum, the exported text (render --
   return l;
 }
 
-float display(float l) {
-  float v = l * exposure_scale(u_exposure);
-  return srgb8_code(u_tone == 0 ? tone_clamp(v) : tone_filmic(v)) / 255.0;
+// The view transform of kernels/display.sl after the exposure, then the 8-bit sRGB code.
+vec3 display(vec3 l) {
+  vec3 d = view_transform(u_view, u_exposure, l);
+  return vec3(srgb8_code(d.r), srgb8_code(d.g), srgb8_code(d.b)) / 255.0;
 }
 
 void main() {
@@ -652,7 +656,7 @@ void main() {
     }
   }
   vec3 l = sum / float(u_spp_side * u_spp_side);
-  o_colour = vec4(display(l.x), display(l.y), display(l.z), 1.0);
+  o_colour = vec4(display(l), 1.0);
 }
 `;
   }
@@ -677,7 +681,7 @@ void main() {
       const buf = gl.createBuffer();
       gl.bindBuffer(gl.ARRAY_BUFFER, buf);
       gl.bufferData(gl.ARRAY_BUFFER, new Float32Array([-1, -1, 3, -1, -1, 3]), gl.STATIC_DRAW);
-      displayKernels = call({ op: 'kernels', names: ['srgb8_code', 'tone_filmic', 'tone_clamp', 'exposure_scale', 'game_specular_albedo',
+      displayKernels = call({ op: 'kernels', names: ['srgb8_code', 'view_transform', 'exposure_scale', 'game_specular_albedo',
                                                      'game_prefiltered_level', 'game_reflect', 'game_diffuse_ambient',
                                                      'game_specular_ambient'], lang: 'essl' }).text;
     }
@@ -722,7 +726,7 @@ void main() {
     gl.uniform3fv(u('u_light'), lv.length === 1 ? [lv[0], lv[0], lv[0]] : lv);
     gl.uniform1i(u('u_units'), state.view.units === 'game' ? 0 : 1);
     gl.uniform1f(u('u_exposure'), Number(state.view.exposure));
-    gl.uniform1i(u('u_tone'), state.view.tone === 'clamp' ? 0 : 1);
+    gl.uniform1i(u('u_view'), TONE_VIEWS[state.view.tone]);
     gl.uniform1i(u('u_point_on'), lighting !== 'hdri' || !env ? 1 : 0);
     gl.uniform1i(u('u_env_on'), env ? 1 : 0);
     gl.uniform3fv(u('u_rho_s.bin[0]'), lobe.specular_albedo.flat());
