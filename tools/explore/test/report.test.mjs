@@ -166,7 +166,7 @@ test('screenshot for the docs', { skip: !process.env.SHADELAB_REPORT_SCREENSHOT 
   const v = page.locator('#view-full');
   await v.locator('button[data-mode="swipe"]').click();
   await v.locator('input.swipe').fill('50');
-  await page.locator('#full tr.material').first().click();
+  await page.locator('#full tr.material').nth(2).click();
   await page.locator('#full').scrollIntoViewIfNeeded();
   await page.locator('#full').screenshot({ path: process.env.SHADELAB_REPORT_SCREENSHOT });
 });
