@@ -81,6 +81,26 @@ TEST(Flip, FlatGreysByHand) {
   EXPECT_NEAR(r.mean, expected, 1e-4);
 }
 
+TEST(Flip, RampAgainstFlatGreyByHand) {
+  // The feature pipeline by hand. Reference: a grey ramp in x, g(x) = 0.3 + s (x - 32), linear in YCxCz's Y
+  // and in y = (Y + 16) / 116 = g (greys: Cx = Cz = 0); test: flat grey 0.5. At x = 32, away from the
+  // edges, the symmetric colour filters keep the ramp's value 0.3, so e_c is the flat greys' error by hand.
+  // The edge detector, a Gaussian derivative whose positive weights sum to 1, answers a ramp of slope s with
+  // s sum_k k^2 g_k / sum_{k>0} k g_k = s sqrt(2 pi) sigma^3 / sigma^2 (the sums as integrals), sigma =
+  // 0.5 * 0.082 * 67 pixels; the point detector gives 0 (a line has no second derivative); the flat test
+  // image has neither. So e_f = (s sqrt(2 pi) sigma / sqrt(2))^0.5 and FLIP = e_c^(1 - e_f) (paper, section 6).
+  const double s = 0.004, sigma = 0.5 * 0.082 * 67.0;
+  Image ramp(64, 32);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) ramp.set(x, y, Rgb::gray(0.3 + s * (x - 32)));
+  const double ec = hand_colour_error(std::abs(cie_lightness(0.5) - cie_lightness(0.3)));
+  const double ef = std::sqrt(s * std::sqrt(2.0 * 3.141592653589793) * sigma / std::sqrt(2.0));
+  EXPECT_GT(ef, 0.1);
+  const FlipResult r = flip(flat(64, 32, Rgb::gray(0.5)), ramp).value();
+  EXPECT_NEAR(r.map.at(32, 16), std::pow(ec, 1.0 - ef), 1e-3);  // 2e-4 apart: the sums as integrals, the 3.3-sigma cut
+  EXPECT_GT(r.map.at(32, 16), ec + 0.05);  // the feature term raises the error
+}
+
 TEST(Flip, ClampsToTheDisplayRange) {
   const FlipResult r = flip(flat(16, 16, Rgb::gray(3.0)), flat(16, 16, Rgb::gray(1.0))).value();
   EXPECT_EQ(r.mean, 0.0);
