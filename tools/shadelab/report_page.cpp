@@ -32,8 +32,8 @@ tr.material{cursor:pointer}tr.material:hover{background:#eef}tr.material.selecte
 .bar .ticks span:first-child{transform:none}.bar .ticks span:last-child{transform:translateX(-100%)}
 .bar .caption{font-size:12px;color:#555}
 .figures td{font-variant-numeric:tabular-nums}
-.maps{display:flex;flex-wrap:wrap;gap:1em}.maps figure{margin:0}
-.maps img{image-rendering:pixelated;width:min(100%,480px)}
+.maps{display:flex;flex-wrap:wrap;gap:1em}.maps figure{margin:0;flex:0 1 480px}
+.maps img{image-rendering:pixelated;width:100%}
 )CSS";
 }
 
