@@ -71,6 +71,10 @@ test('every figure on the page equals the JSON', async () => {
   }
   for (const c of cells) {
     const expected = pointer(json, c.p);
+    if (expected === null) {  // SSIM of an image under 11 x 11 pixels: null in the JSON, '-' on the page
+      assert.equal(c.v, 'null', `${c.p}: JSON null, page ${c.v}`);
+      continue;
+    }
     assert.equal(typeof expected, 'number', `${c.p}: not a number in the JSON`);
     assert.equal(Number(c.v), expected, `${c.p}: page ${c.v}, JSON ${expected}`);
     if (c.text.trim() === '' || c.text.includes('<span')) continue;
