@@ -148,6 +148,14 @@ TEST(CliReport, WritesAPageWithThreeLightings) {
   const std::string html = ss.str();
   EXPECT_NE(html.find("<table>"), std::string::npos);
   EXPECT_NE(html.find("environment_game.png"), std::string::npos);
+  // LDR-FLIP beside SSIM (image/flip.h): in [0, 1], per section and per material, and its map.
+  EXPECT_TRUE(fs::exists(dir / "full_flip.png"));
+  for (const auto& s : j["sections"]) {
+    EXPECT_GE(s["flip"].get<double>(), 0.0);
+    EXPECT_LE(s["flip"].get<double>(), 1.0);
+    EXPECT_GT(s["heat_scale"].get<double>(), 0.0);
+    for (const auto& m : s["materials"]) EXPECT_TRUE(m.contains("flip")) << m;
+  }
 }
 
 TEST(CliReport, IblErrorAddsTheMapOfTheEnvironment) {
@@ -165,6 +173,16 @@ TEST(CliReport, IblErrorAddsTheMapOfTheEnvironment) {
   std::stringstream ss;
   ss << f.rdbuf();
   EXPECT_NE(ss.str().find("ibl_error/index.html"), std::string::npos);
+  // The page's figures carry the JSON's values (report_page.h exact_number; the browser test checks the rest).
+  for (const char* key : {"split_sum", "corrected", "sh"}) {
+    const std::string ptr = std::string("/ibl_error/") + key + "/mean_abs_error";
+    const std::string attr = "data-json=\"" + ptr + "\" data-value=\"";
+    const std::size_t at = ss.str().find(attr);
+    ASSERT_NE(at, std::string::npos) << ptr;
+    const std::size_t from = at + attr.size();
+    const double shown = std::stod(ss.str().substr(from, ss.str().find('"', from) - from));
+    EXPECT_EQ(shown, j.at(nlohmann::json::json_pointer(ptr)).get<double>()) << ptr;
+  }
   // A scene without an environment: one line, exit 2, nothing written.
   const std::string none = std::string(SHADELAB_SCENES_DIR) + "/cornell.json";  // no environment
   const fs::path bad = temp_dir() / "report_ibl_bad";

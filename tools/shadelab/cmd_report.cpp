@@ -35,7 +35,9 @@
 #include "shadelab/core/text.h"
 #include "ibl_error_page.h"
 #include "progress.h"
+#include "report_page.h"
 #include "shadelab/brdf/wrapped_diffuse.h"
+#include "shadelab/image/flip.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/image/metrics.h"
 #include "shadelab/render/accel.h"
@@ -163,7 +165,7 @@ void run_report(const ReportOptions& o) {
   {
     std::vector<NamedPath> outputs{{"--out", dir / "index.html"}};
     for (const char* kind : {"punctual", "environment", "full"}) {
-      for (const char* file : {"_reference.png", "_reference.exr", "_game.png", "_game.exr", "_heatmap.png"}) {
+      for (const char* file : {"_reference.png", "_reference.exr", "_game.png", "_game.exr", "_heatmap.png", "_flip.png"}) {
         outputs.push_back({"--out", dir / (std::string(kind) + file)});
       }
     }
@@ -222,19 +224,52 @@ void run_report(const ReportOptions& o) {
     }
     const fs::path heat_png = dir / (kind + "_heatmap.png");
     files.emplace_back(heat_png, unwrap(encode_image(heat.image, heat_png)));
+    // LDR-FLIP (image/flip.h) of what the PNGs show: the same display transform (exposure 0, filmic), before
+    // the sRGB encoding; its map through the heat ramp, white at 1.
+    FlipOptions fo;
+    fo.name_test = kind + " game";
+    fo.name_reference = kind + " reference";
+    const FlipResult fl = unwrap(flip(tonemap(game->beauty, 0.0, ToneCurve::filmic), tonemap(ref->beauty, 0.0, ToneCurve::filmic), fo));
+    {
+      Image flip_img(fl.map.width, fl.map.height);
+      for (int y = 0; y < fl.map.height; ++y)
+        for (int x = 0; x < fl.map.width; ++x) flip_img.set(x, y, heat_ramp(fl.map.at(x, y)));
+      const fs::path flip_png = dir / (kind + "_flip.png");
+      files.emplace_back(flip_png, unwrap(encode_image(flip_img, flip_png)));
+    }
+    const auto masked_flip = [&fl, &ids](int material) {
+      double total = 0.0;
+      long long n = 0;
+      for (std::size_t i = 0; i < ids.size(); ++i) {
+        if (ids[i] != material) continue;
+        total += fl.map.values[i];
+        ++n;
+      }
+      return n > 0 ? total / static_cast<double>(n) : 0.0;
+    };
     nlohmann::json materials = nlohmann::json::array();
     std::string rows;
+    const std::string ptr = fmt::format("/sections/{}", k);
+    // A figure of the page: its exact value (data-value) and the JSON pointer of the same value in --json's
+    // output (data-json), for the page's browser test; the text shows `shown` digits.
+    const auto cell = [](double v, const std::string& pointer, const std::string& shown) {
+      return fmt::format("<td data-json=\"{}\" data-value=\"{}\">{}</td>", pointer, exact_number(v),
+                         std::isfinite(v) ? fmt::format(fmt::runtime("{:" + shown + "}"), v) : std::string("-"));
+    };
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
       const MaskedFigures f = masked(game->beauty, ref->beauty, ids, static_cast<int>(m));
       if (f.pixels == 0) continue;
+      const std::string mp = fmt::format("{}/materials/{}", ptr, materials.size());
+      const double mflip = masked_flip(static_cast<int>(m));
       nlohmann::json entry = {{"material", scene.materials[m].name}, {"model", scene.materials[m].model}, {"pixels", f.pixels},
                               {"rmse", f.rmse}, {"relative_mse", f.relative_mse}, {"luminance_ratio", f.luminance_ratio}};
       entry["specular_ambient"] = game_specular_ambient_name(ambients[m]);
-      std::string phong_cell = "";
+      entry["flip"] = mflip;
+      std::string phong_cell = "<td></td>";
       if (before && ambients[m] == GameSpecularAmbient::split_sum) {
         const MaskedFigures b = masked(before->beauty, ref->beauty, ids, static_cast<int>(m));
         entry["phong_chain"] = {{"rmse", b.rmse}, {"relative_mse", b.relative_mse}, {"luminance_ratio", b.luminance_ratio}};
-        phong_cell = fmt::format("{:.4f}", b.luminance_ratio);
+        phong_cell = cell(b.luminance_ratio, mp + "/phong_chain/luminance_ratio", ".4f");
       }
       std::string note;
       const Brdf* material_brdf = scene.materials[m].brdf.get();
@@ -250,23 +285,38 @@ void run_report(const ReportOptions& o) {
                                          scene.materials[m].name, w, ratio, 1.0 / ratio, f.luminance_ratio));
       }
       materials.push_back(entry);
-      rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4f}{}</td><td>{}</td></tr>\n",
-                          xml_escape(scene.materials[m].name), xml_escape(scene.materials[m].model),
-                          game_specular_ambient_name(ambients[m]), f.pixels, f.rmse, f.relative_mse, f.luminance_ratio,
-                          xml_escape(note), phong_cell);
+      rows += fmt::format("<tr class=\"material\" data-material=\"{}\" title=\"click: show its pixels\"><td>{}</td><td>{}</td><td>{}</td>"
+                          "<td data-json=\"{}/pixels\" data-value=\"{}\">{}</td>{}{}{}{}<td>{}</td>{}</tr>\n",
+                          m, xml_escape(scene.materials[m].name), xml_escape(scene.materials[m].model),
+                          game_specular_ambient_name(ambients[m]), mp, f.pixels, f.pixels, cell(f.rmse, mp + "/rmse", ".4g"),
+                          cell(f.relative_mse, mp + "/relative_mse", ".4g"), cell(mflip, mp + "/flip", ".4f"),
+                          cell(f.luminance_ratio, mp + "/luminance_ratio", ".4f"), xml_escape(note), phong_cell);
     }
     sections.push_back({{"lighting", kind}, {"rmse", d.rmse}, {"relative_mse", d.relative_mse}, {"max_error", d.max_abs_error},
                         {"luminance_ratio", d.mean_luminance_ratio}, {"ssim", std::isfinite(d.ssim) ? nlohmann::json(d.ssim) : nlohmann::json(nullptr)},
-                        {"reference_spp", ref->stats.spp_done}, {"materials", materials}});
+                        {"reference_spp", ref->stats.spp_done}, {"materials", materials}, {"flip", fl.mean},
+                        {"flip_pixels_per_degree", fo.pixels_per_degree}, {"heat_scale", heat.scale}});
+    const std::string id = "view-" + kind;
     body += fmt::format(
-        "<h2>{}</h2>\n<p>RMSE {:.4g}, relative MSE {:.4g}, max error {:.4g}, mean luminance game/reference {:.4f}, SSIM {:.4f} "
-        "(reference: {} spp).</p>\n<div class=row><figure><img src=\"{}_reference.png\"><figcaption>reference (path tracer)</figcaption></figure>"
-        "<figure><img src=\"{}_game.png\"><figcaption>game shading</figcaption></figure>"
-        "<figure><img src=\"{}_heatmap.png\"><figcaption>relative error, white = {:.3g}</figcaption></figure></div>\n"
-        "<table><tr><th>material</th><th>model</th><th>specular ambient</th><th>pixels</th><th>RMSE</th><th>relative MSE</th><th>luminance game/ref</th>"
-        "<th>luminance game/ref with the Phong chain (before 2026-12-07)</th></tr>\n{}</table>\n",
-        kind, d.rmse, d.relative_mse, d.max_abs_error, d.mean_luminance_ratio, d.ssim, ref->stats.spp_done, kind, kind, kind,
-        heat.scale, rows);
+        "<section id=\"{0}\"><h2>{0}</h2>\n<table class=\"figures\"><tr><th>RMSE</th><th>relative MSE</th><th>max error</th>"
+        "<th>luminance game/reference</th><th>SSIM</th><th>FLIP (mean)</th><th>reference spp</th></tr>\n<tr>{1}{2}{3}{4}{5}{6}"
+        "<td data-json=\"{7}/reference_spp\" data-value=\"{8}\">{8}</td></tr></table>\n",
+        kind, cell(d.rmse, ptr + "/rmse", ".4g"), cell(d.relative_mse, ptr + "/relative_mse", ".4g"),
+        cell(d.max_abs_error, ptr + "/max_error", ".4g"), cell(d.mean_luminance_ratio, ptr + "/luminance_ratio", ".4f"),
+        cell(d.ssim, ptr + "/ssim", ".4f"), cell(fl.mean, ptr + "/flip", ".4f"), ptr, ref->stats.spp_done);
+    body += viewer_html(id, s.camera.width, s.camera.height,
+                        {{kind + "_reference.png", "reference", "reference (path tracer)"},
+                         {kind + "_game.png", "game", "game shading"},
+                         {kind + "_heatmap.png", "heat", "relative error"},
+                         {kind + "_flip.png", "flip", "FLIP"}},
+                        colour_bar_html(heat.scale, "relative error max_c |game - ref| / sqrt(ref^2 + 0.01), white at the 99th percentile",
+                                        ptr + "/heat_scale"),
+                        colour_bar_html(1.0, "LDR-FLIP (Andersson et al. 2020) at 67 pixels per degree", ""));
+    body += fmt::format(
+        "<div data-viewer=\"{}\"><table><tr><th>material</th><th>model</th><th>specular ambient</th><th>pixels</th><th>RMSE</th>"
+        "<th>relative MSE</th><th>FLIP</th><th>luminance game/ref</th><th>note</th>"
+        "<th>luminance game/ref with the Phong chain (before 2026-12-07)</th></tr>\n{}</table></div></section>\n",
+        id, rows);
   }
   bar.finish();
   nlohmann::json ibl_json;
@@ -286,35 +336,52 @@ void run_report(const ReportOptions& o) {
     header.specular_size = io.game.specular_size;
     header.seed = io.seed;
     const nlohmann::json written = ibl_error_files(map, header, sub, files);
-    const auto pct = [](double v) { return 100.0 * v; };
+    const double ibl_scale = written["split_sum"]["heat_scale"].get<double>();
+    // A figure in per cent: data-value holds the fraction as --json writes it (data-unit="percent").
+    const auto pct = [](double v, const std::string& pointer) {
+      return fmt::format("<span data-json=\"{}\" data-value=\"{}\" data-unit=\"percent\">{:.2f}%</span>", pointer, exact_number(v), 100.0 * v);
+    };
     body += fmt::format(
-        "<h2>Image-based lighting: the shortcuts against the path tracer</h2>\n<p>A ggx sphere lit by this scene's "
+        "<section id=\"ibl\"><h2>Image-based lighting: the shortcuts against the path tracer</h2>\n<p>A ggx sphere lit by this scene's "
         "environment alone, per roughness and N.V (<a href=\"ibl_error/index.html\">the whole map</a>). Split sum "
-        "read along R: mean |error| {:.2f}%, max {:.2f}%, at N.V &lt; 0.3 {:.2f}%; each part read at its lobe's moments: mean "
-        "{:.2f}%, max {:.2f}%, at N.V &lt; 0.3 {:.2f}%; SH9 irradiance on a white Lambert sphere: mean {:.2f}%, max "
-        "{:.2f}%.</p>\n<div class=row><figure><img src=\"ibl_error/split_sum_error.png\"><figcaption>split sum |error|"
-        "</figcaption></figure><figure><img src=\"ibl_error/corrected_error.png\"><figcaption>read per lobe"
-        "</figcaption></figure></div>\n",
-        pct(map.split_sum_summary.mean_abs), pct(map.split_sum_summary.max_abs), pct(map.split_sum_summary.grazing_mean_abs),
-        pct(map.corrected_summary.mean_abs), pct(map.corrected_summary.max_abs), pct(map.corrected_summary.grazing_mean_abs),
-        pct(map.sh_summary.mean_abs), pct(map.sh_summary.max_abs));
+        "read along R: mean |error| {}, max {}, at N.V &lt; 0.3 {}; each part read at its lobe's moments: mean "
+        "{}, max {}, at N.V &lt; 0.3 {}; SH9 irradiance on a white Lambert sphere: mean {}, max "
+        "{}.</p>\n<div class=\"maps\"><figure><img src=\"ibl_error/split_sum_error.png\" alt=\"split sum |error|\"><figcaption>split sum |error| "
+        "(rows: roughness, the smoothest at the top; columns: N.V from 0)</figcaption></figure><figure><img src=\"ibl_error/corrected_error.png\" "
+        "alt=\"read per lobe\"><figcaption>read per lobe, the same scale</figcaption></figure></div>\n{}</section>\n",
+        pct(map.split_sum_summary.mean_abs, "/ibl_error/split_sum/mean_abs_error"),
+        pct(map.split_sum_summary.max_abs, "/ibl_error/split_sum/max_abs_error"),
+        pct(map.split_sum_summary.grazing_mean_abs, "/ibl_error/split_sum/grazing_mean_abs_error"),
+        pct(map.corrected_summary.mean_abs, "/ibl_error/corrected/mean_abs_error"),
+        pct(map.corrected_summary.max_abs, "/ibl_error/corrected/max_abs_error"),
+        pct(map.corrected_summary.grazing_mean_abs, "/ibl_error/corrected/grazing_mean_abs_error"),
+        pct(map.sh_summary.mean_abs, "/ibl_error/sh/mean_abs_error"), pct(map.sh_summary.max_abs, "/ibl_error/sh/max_abs_error"),
+        colour_bar_html(ibl_scale, "|(shortcut - reference) / reference| per cell, white at the split sum's largest (at least 0.01)",
+                        "/ibl_error/heat_scale"));
     // The summaries as ibl_error.json holds them.
     ibl_json = {{"page", (sub / "index.html").string()}, {"split_sum", written["split_sum"]["summary"]},
                 {"corrected", written["corrected"]["summary"]}, {"grazing_reduction", map.grazing_reduction},
-                {"sh", written["sh"]["summary"]}, {"seconds", map.seconds}};
+                {"sh", written["sh"]["summary"]}, {"seconds", map.seconds}, {"heat_scale", ibl_scale}};
   }
+  nlohmann::json page_data = {{"width", scene.camera.width}, {"height", scene.camera.height}, {"material_ids", run_lengths(ids)}};
+  std::string page_json = page_data.dump();
+  // Inside <script>, "</" would end the element early; JSON allows "<\/".
+  for (std::size_t p = page_json.find("</"); p != std::string::npos; p = page_json.find("</", p + 2)) page_json.insert(p + 1, "\\");
   const std::string html = fmt::format(
-      "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>shadelab report: {0}</title>\n<style>body{{font-family:sans-serif;"
-      "max-width:1400px;margin:2em auto}} .row{{display:flex;gap:8px}} figure{{margin:0}} img{{max-width:100%}} table{{border-collapse:collapse}}"
-      " td,th{{border:1px solid #ccc;padding:2px 8px;text-align:right}}</style></head><body>\n<h1>Game shading against the reference: {0}</h1>\n"
+      "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>shadelab report: {0}</title>\n<style>{2}</style></head><body>\n"
+      "<h1>Game shading against the reference: {0}</h1>\n"
       "<p><b>punctual</b>: only punctual lights, direct light: the game shading equation (pi f c cos with c the game colour) should match the "
       "path tracer within its noise. <b>environment</b>: only the environment, direct light: SH9 diffuse and prefiltered specular against the exact "
       "integral. <b>full</b>: everything, the reference at full depth: adds interreflection and area lights, which game shading leaves out.</p>\n"
+      "<p>Each viewer shows the game and reference images at full size and the same exposure (0 EV, the filmic curve of <code>render</code>): "
+      "<b>swipe</b> (the game left of the line), <b>flip</b> (the button or key F alternates them), the relative <b>error heat map</b> and the "
+      "<b>FLIP map</b> (LDR-FLIP, Andersson et al. 2020, 0 = no visible difference, 1 = the largest), each with its colour bar. Zoom keeps "
+      "pixels square (nearest neighbour); drag to pan. Click a material's row to show its pixels.</p>\n"
       "<p><b>wrapped diffuse</b>: the SH wrap factors 1, (2-w)/3, (1-w)^2/4 are the bands of (cos+w)/(pi (1+w)^2) over every direction with "
       "cos &gt; -w; the BRDF is 0 below the horizon, so under a uniform environment game shading gives kd and the reference kd (1+2w)/(1+w)^2 "
       "(0.889 kd at w = 0.5). Wrapped materials show the expected ratio beside the measured one.</p>\n{1}"
-      "</body></html>\n",
-      xml_escape(scene.source), body);
+      "<script type=\"application/json\" id=\"report-data\">{3}</script>\n<script>{4}</script>\n</body></html>\n",
+      xml_escape(scene.source), body, report_page_css(), page_json, report_page_script());
   files.emplace_back(dir / "index.html", std::vector<char>(html.begin(), html.end()));
   fs::create_directories(o.ibl_error ? dir / "ibl_error" : dir, ec);
   if (ec) throw UsageError("--out: cannot create the folder '" + o.out + "': " + ec.message());

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cli_common.h"
+#include "report_page.h"
 #include "shadelab/core/text.h"
 #include "shadelab/image/image_io.h"
 #include "shadelab/image/metrics.h"
@@ -80,8 +81,7 @@ std::string html_page(const IblErrorMap& map, const std::string& input, double s
   const auto pct = [](double v) { return fmt::format("{:+.2f}%", 100.0 * v); };
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>shadelab ibl-error: "
     << xml_escape(std::filesystem::path(input).filename().string()) << "</title>\n"
-    << "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #999;"
-       "padding:2px 6px;text-align:right}</style></head><body>\n"
+    << "<style>" << report_page_css() << "</style></head><body>\n"
     << "<h1>Image-based lighting: the shortcuts against the path tracer</h1>\n<p>Environment <code>"
     << xml_escape(input) << "</code>, model <code>" << xml_escape(map.model)
     << "</code>. A unit sphere lit by the environment alone; each cell is (shortcut - reference) / reference of "
@@ -111,8 +111,10 @@ std::string html_page(const IblErrorMap& map, const std::string& input, double s
   h << "<h2>Split sum (prefiltered GGX chain x DFG table)</h2>\n";
   table(map.split_sum, "roughness");
   summary(map.split_sum_summary);
-  h << fmt::format("<p><img src=\"split_sum_error.png\" alt=\"|error| per cell, white at {:.3g}\"> |error| per cell "
-                   "(rows: roughness, top the smoothest; columns: N.V from 0), white at {:.3g}.</p>\n", scale, scale);
+  h << fmt::format("<div class=\"maps\"><figure><img src=\"split_sum_error.png\" alt=\"|error| per cell, white at {:.3g}\">"
+                   "<figcaption>|error| per cell (rows: roughness, top the smoothest; columns: N.V from 0), white at {:.3g}"
+                   "</figcaption></figure></div>\n", scale, scale)
+    << colour_bar_html(scale, "|(shortcut - reference) / reference| per cell", "/split_sum/heat_scale");
   if (map.correction == GameSplitSumLookup::lobes) {
     h << "<h2>Split sum read per part at its lobe's first moments</h2>\n"
          "<p>The same chain and table (the same storage), read twice: f0 A along the mean direction of the A lobe "
@@ -133,8 +135,9 @@ std::string html_page(const IblErrorMap& map, const std::string& input, double s
   summary(map.corrected_summary);
   h << fmt::format("<p>At N.V &lt; 0.3 the mean |error| falls by {:.1f}% of the uncorrected split sum's.</p>\n",
                    100.0 * map.grazing_reduction);
-  h << fmt::format("<p><img src=\"corrected_error.png\" alt=\"|error| per cell, white at {:.3g}\"> the same scale."
-                   "</p>\n", scale);
+  h << fmt::format("<div class=\"maps\"><figure><img src=\"corrected_error.png\" alt=\"|error| per cell, white at {:.3g}\">"
+                   "<figcaption>the same scale</figcaption></figure></div>\n", scale)
+    << colour_bar_html(scale, "|(shortcut - reference) / reference| per cell", "/split_sum/heat_scale");
   h << "<h2>SH9 irradiance (white Lambert sphere)</h2>\n";
   table({map.sh}, "");
   summary(map.sh_summary);
