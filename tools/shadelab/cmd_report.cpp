@@ -224,12 +224,13 @@ void run_report(const ReportOptions& o) {
     }
     const fs::path heat_png = dir / (kind + "_heatmap.png");
     files.emplace_back(heat_png, unwrap(encode_image(heat.image, heat_png)));
-    // LDR-FLIP (image/flip.h) of what the PNGs show: the same display transform (exposure 0, filmic), before
-    // the sRGB encoding; its map through the heat ramp, white at 1.
+    // LDR-FLIP (image/flip.h) of what the PNGs show: the same view and exposure (--view, --exposure; filmic at 0
+    // by default), before the sRGB encoding; its map through the heat ramp, white at 1.
     FlipOptions fo;
     fo.name_test = kind + " game";
     fo.name_reference = kind + " reference";
-    const FlipResult fl = unwrap(flip(tonemap(game->beauty, 0.0, ToneCurve::filmic), tonemap(ref->beauty, 0.0, ToneCurve::filmic), fo));
+    const FlipResult fl = unwrap(flip(unwrap(apply_view(game->beauty, o.exposure, view)),
+                                      unwrap(apply_view(ref->beauty, o.exposure, view)), fo));
     {
       Image flip_img(fl.map.width, fl.map.height);
       for (int y = 0; y < fl.map.height; ++y)
