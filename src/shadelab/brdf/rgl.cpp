@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -437,10 +438,14 @@ Result<RglTable> rgl_table(const TensorFile& file, const std::string& name) {
   t.isotropic = np <= 2;  // the loader's test
   if (!t.isotropic) {
     // The loader's reduction: the phi_i values must span the whole circle.
-    const double reduction = std::rint(two_pi / (t.phi_i.back() - t.phi_i.front()));
+    // The span is printed, not the reduction: a tiny span makes 2 pi / span overflow any integer type.
+    const double span = t.phi_i.back() - t.phi_i.front();
+    const double reduction = std::rint(two_pi / span);
     if (reduction != 1.0) {
-      return make_error(name + ": field \"phi_i\" spans 1/" + std::to_string(static_cast<long long>(reduction)) +
-                        " of the circle; only files covering 2 pi (reduction 1) are read, as the loader does");
+      char text[32];
+      std::snprintf(text, sizeof text, "%.6g", span);
+      return make_error(name + ": field \"phi_i\" spans " + text +
+                        " rad, not the whole circle; only files covering 2 pi (reduction 1) are read, as the loader does");
     }
   }
   t.jacobian = file.bytes[jac_f->offset] != 0;
