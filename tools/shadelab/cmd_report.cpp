@@ -30,6 +30,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <tuple>
 
 #include "cli_common.h"
 #include "shadelab/core/text.h"
@@ -217,9 +218,13 @@ void run_report(const ReportOptions& o) {
     co.name_b = kind + " reference";
     const ImageDifference d = unwrap(compare_images(game->beauty, ref->beauty, co));
     const Heatmap heat = unwrap(error_heatmap(game->beauty, ref->beauty, co));
-    for (const auto& [img, name] : {std::pair{&ref->beauty, "reference"}, std::pair{&game->beauty, "game"}}) {
+    // The display values the PNGs show (--view, --exposure), once per image: FLIP below reads the same ones.
+    const Image ref_display = unwrap(apply_view(ref->beauty, o.exposure, view));
+    const Image game_display = unwrap(apply_view(game->beauty, o.exposure, view));
+    for (const auto& [img, shown, name] : {std::tuple{&ref->beauty, &ref_display, "reference"},
+                                           std::tuple{&game->beauty, &game_display, "game"}}) {
       const fs::path png = dir / (kind + "_" + name + ".png"), exr = dir / (kind + "_" + name + ".exr");
-      files.emplace_back(png, unwrap(encode_image(unwrap(apply_view(*img, o.exposure, view)), png)));
+      files.emplace_back(png, unwrap(encode_image(*shown, png)));
       files.emplace_back(exr, unwrap(encode_image(*img, exr)));
     }
     const fs::path heat_png = dir / (kind + "_heatmap.png");
@@ -229,8 +234,7 @@ void run_report(const ReportOptions& o) {
     FlipOptions fo;
     fo.name_test = kind + " game";
     fo.name_reference = kind + " reference";
-    const FlipResult fl = unwrap(flip(unwrap(apply_view(game->beauty, o.exposure, view)),
-                                      unwrap(apply_view(ref->beauty, o.exposure, view)), fo));
+    const FlipResult fl = unwrap(flip(game_display, ref_display, fo));
     {
       Image flip_img(fl.map.width, fl.map.height);
       for (int y = 0; y < fl.map.height; ++y)
